@@ -5,3 +5,18 @@
 //! See `ARCHITECTURE.md` for the map of modules and where each thesis equation lives.
 
 pub mod column;
+pub mod cholesky;
+pub mod cone;
+pub mod configuration;
+pub mod enumeration;
+pub mod error;
+pub mod impact;
+pub mod opening;
+pub mod projection;
+pub mod samples;
+
+pub use cone::{ModelOptions, ModelReport, Solver};
+pub use configuration::Status;
+pub use error::{ErrorKind, RockingError};
+pub use impact::impact_model;
+pub use opening::{check_configuration, opening_model};
