@@ -11,7 +11,7 @@
 use crate::cone::{self, ConeProblem, Generator, ModelOptions, ModelReport};
 use crate::configuration::{self, Status};
 use crate::error::{ErrorKind, RockingError};
-use crate::impact::{check_mass, check_positive_definite, kinetic_energy};
+use crate::impact::{check_mass, check_positive_definite};
 
 fn generators(statuses: &[Status]) -> Vec<Generator> {
     let n = statuses.len();
