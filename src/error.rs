@@ -23,7 +23,13 @@ macro_rules! codes {
 
             /// Static message of the code.
             pub fn message(self) -> &'static str {
-                match self { $( ErrorKind::$name => $msg, )* }
+                let c = self.c_message();
+                &c[..c.len() - 1]
+            }
+
+            /// Static message of the code, NUL-terminated for C.
+            pub fn c_message(self) -> &'static str {
+                match self { $( ErrorKind::$name => concat!($msg, "\0"), )* }
             }
 
             /// The kind with this code, if any.
@@ -38,7 +44,7 @@ codes! {
     /// A required pointer argument was NULL.
     NullPointer = -1, "a required pointer argument is NULL";
     /// `n_interfaces` is zero, too large, or a size computed from it overflows.
-    InvalidSize = -2, "invalid size: n_interfaces is zero, above the supported maximum, or its arrays overflow";
+    InvalidSize = -2, "invalid size: n is zero, above the supported maximum, a size overflows, or a pointer is misaligned";
     /// An input holds NaN or infinity.
     NotFinite = -3, "an input value is NaN or infinite";
     /// The mass matrix is not symmetric.

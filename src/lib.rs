@@ -4,8 +4,11 @@
 //!
 //! See `ARCHITECTURE.md` for the map of modules and where each thesis equation lives.
 
-pub mod column;
+// Index loops mirror the thesis's matrix notation (M[a][b], sums over blocks j >= k).
+#![allow(clippy::needless_range_loop)]
+
 pub mod cholesky;
+pub mod column;
 pub mod cone;
 pub mod configuration;
 pub mod enumeration;
@@ -20,3 +23,4 @@ pub use configuration::Status;
 pub use error::{ErrorKind, RockingError};
 pub use impact::impact_model;
 pub use opening::{check_configuration, opening_model};
+pub mod ffi;
