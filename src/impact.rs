@@ -138,6 +138,10 @@ pub fn impact_model(
     };
     let n_imp = options.n_impacts;
     let mut impacting_status = Status::Closed;
+    // The bumps follow each other without time passing, so an interface that opens during the
+    // chain still has a zero angle: it stays one-sided (it may keep its corner, switch or close)
+    // in the next step. Only interfaces open before the impact are free.
+    let open_before: Vec<bool> = statuses.iter().map(|s| s.is_open()).collect();
     for step in 1..=n_imp {
         let lambda =
             lambda_start + (lambda_end - lambda_start) * f64::from(step) / f64::from(n_imp);
@@ -146,7 +150,7 @@ pub fn impact_model(
             if j == closing {
                 continue;
             }
-            match s.dof(j, n) {
+            match s.dof(j, n).filter(|_| open_before[j]) {
                 Some(d) => gens.push(Generator::unit(d, 1.0, false, None)),
                 None => {
                     gens.push(Generator::unit(j, -1.0, true, Some(j)));
@@ -181,6 +185,9 @@ pub fn impact_model(
         let problem = ConeProblem::new(gens, mass, m, &rhs, options.tolerance)?;
         let sol = cone::solve(&problem, options)?;
         v = problem.dof_vector(&sol.y_hat, m);
+        for j in (0..n).filter(|&j| j != closing && !open_before[j]) {
+            st[j] = Status::Closed;
+        }
         for (g, gen) in problem.gens.iter().enumerate() {
             if let Some(j) = gen.group {
                 if sol.y_hat[g] > 0.0 {

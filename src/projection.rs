@@ -211,9 +211,10 @@ pub(crate) fn solve(problem: &ConeProblem) -> Result<ConeSolution, RockingError>
             }
         }
     }
-    let (f, y_hat, condition) =
+    let (_, y_hat, condition) =
         best.expect("the branch that keeps every group closed is admissible");
-    let criterion = -2.0 * f;
+    let (y_hat, condition) = polish(problem, y_hat, condition, &mut ws)?;
+    let criterion: f64 = problem.b.iter().zip(&y_hat).map(|(b, v)| b * v).sum();
     let tie = !runner_up.is_nan() && runner_up >= criterion * (1.0 - TIE_GAP);
     Ok(ConeSolution {
         y_hat,
@@ -225,4 +226,46 @@ pub(crate) fn solve(problem: &ConeProblem) -> Result<ConeSolution, RockingError>
         condition,
         solver: Solver::Projection,
     })
+}
+
+/// Applies the enumeration's admissibility rule to the optimum: a bounded coefficient must exceed
+/// the threshold, not merely be positive. Coefficients at or below it (openings at round-off
+/// rates, which the enumeration rejects) are set to zero and the face is solved again, until
+/// every remaining one passes. The kinetic energy changes only at round-off level.
+fn polish(
+    problem: &ConeProblem,
+    mut y: Vec<f64>,
+    mut condition: f64,
+    ws: &mut Workspace,
+) -> Result<(Vec<f64>, f64), RockingError> {
+    loop {
+        let weak = (0..problem.p())
+            .any(|i| problem.gens[i].bounded && y[i] != 0.0 && y[i] <= problem.threshold);
+        if !weak {
+            return Ok((y, condition));
+        }
+        ws.set.clear();
+        ws.set
+            .extend((0..problem.p()).filter(|&i| {
+                y[i] != 0.0 && (!problem.gens[i].bounded || y[i] > problem.threshold)
+            }));
+        y.iter_mut().for_each(|v| *v = 0.0);
+        if ws.set.is_empty() {
+            return Ok((y, 1.0));
+        }
+        if !problem.solve_face(&ws.set, &mut ws.factor, &mut ws.z) {
+            return Err(RockingError::new(
+                ErrorKind::NotPositiveDefinite,
+                "the mass matrix of a configuration is not positive definite",
+            ));
+        }
+        condition = crate::cholesky::condition_estimate(&ws.factor, ws.set.len());
+        for (&i, &v) in ws.set.iter().zip(&ws.z) {
+            y[i] = if problem.gens[i].bounded {
+                v.max(0.0)
+            } else {
+                v
+            };
+        }
+    }
 }
