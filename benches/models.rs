@@ -1,0 +1,139 @@
+//! Impact and opening time against the number of closed interfaces: enumeration 1–12,
+//! projection 1–200, and a 40- and 100-block impact through the C ABI.
+//!
+//! `cargo bench --bench models` (numbers go into docs/performance.md).
+
+use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criterion};
+use rocking::column::{Column, GRAVITY};
+use rocking::ffi::{rocking_impact_model, RockingOptions};
+use rocking::{impact_model, opening_model, ModelOptions, Solver, Status};
+use std::time::Duration;
+
+/// A column of `n` slender blocks (0.4 × 1.2 m) whose top interface closes at 1 rad/s about
+/// its left corner: `n − 1` closed interfaces choose.
+fn impact_case(n: usize) -> (Vec<f64>, Vec<Status>, Vec<f64>) {
+    let column = Column::uniform(n, 0.4, 1.2 * n as f64, 100.0 * n as f64).unwrap();
+    let mass = column.mass_matrix(&column.pose(&vec![0.0; 2 * n]));
+    let mut st = vec![Status::Closed; n];
+    st[n - 1] = Status::OpenLeft;
+    let mut v = vec![0.0; 2 * n];
+    v[2 * n - 1] = -1.0;
+    (mass, st, v)
+}
+
+/// The same column, closed, under a ground acceleration of 2 a_min: `n` closed interfaces.
+fn opening_case(n: usize) -> (Vec<f64>, Vec<f64>) {
+    let column = Column::uniform(n, 0.4, 1.2 * n as f64, 100.0 * n as f64).unwrap();
+    let pose = column.pose(&vec![0.0; 2 * n]);
+    let amin = column.static_uplift_acceleration(GRAVITY);
+    (
+        column.mass_matrix(&pose),
+        column.load_vector(&pose, 2.0 * amin, GRAVITY),
+    )
+}
+
+fn impacts(c: &mut Criterion) {
+    let mut g = c.benchmark_group("impact");
+    g.warm_up_time(Duration::from_millis(300))
+        .measurement_time(Duration::from_secs(1))
+        .sample_size(10);
+    for (solver, sizes) in [
+        (Solver::Enumerate, vec![1usize, 2, 3, 5, 7, 9, 11, 12]),
+        (
+            Solver::Projection,
+            vec![1, 2, 3, 5, 7, 9, 11, 12, 20, 40, 100, 200],
+        ),
+    ] {
+        for closed in sizes {
+            let (mass, st, v) = impact_case(closed + 1);
+            let opts = ModelOptions {
+                solver,
+                ..ModelOptions::default()
+            };
+            g.bench_with_input(
+                BenchmarkId::new(format!("{solver:?}"), closed),
+                &closed,
+                |b, _| {
+                    b.iter(|| {
+                        let mut s = st.clone();
+                        let mut vv = v.clone();
+                        impact_model(black_box(&mass), &mut s, &mut vv, closed, &opts).unwrap()
+                    })
+                },
+            );
+        }
+    }
+    g.finish();
+}
+
+fn openings(c: &mut Criterion) {
+    let mut g = c.benchmark_group("opening");
+    g.warm_up_time(Duration::from_millis(300))
+        .measurement_time(Duration::from_secs(1))
+        .sample_size(10);
+    for (solver, sizes) in [
+        (Solver::Enumerate, vec![1usize, 2, 3, 5, 7, 9, 11, 12]),
+        (
+            Solver::Projection,
+            vec![1, 2, 3, 5, 7, 9, 11, 12, 20, 40, 100, 200],
+        ),
+    ] {
+        for closed in sizes {
+            let (mass, load) = opening_case(closed);
+            let opts = ModelOptions {
+                solver,
+                ..ModelOptions::default()
+            };
+            g.bench_with_input(
+                BenchmarkId::new(format!("{solver:?}"), closed),
+                &closed,
+                |b, _| {
+                    b.iter(|| {
+                        let mut s = vec![Status::Closed; closed];
+                        let mut a = vec![0.0; 2 * closed];
+                        opening_model(black_box(&mass), &load, &mut s, &mut a, &opts).unwrap()
+                    })
+                },
+            );
+        }
+    }
+    g.finish();
+}
+
+fn c_abi(c: &mut Criterion) {
+    let mut g = c.benchmark_group("c_abi_impact");
+    g.warm_up_time(Duration::from_millis(300))
+        .measurement_time(Duration::from_secs(1))
+        .sample_size(10);
+    for blocks in [40usize, 100] {
+        let (mass, st, v) = impact_case(blocks);
+        let st: Vec<i8> = st.iter().map(|s| s.as_i8()).collect();
+        let opts = RockingOptions {
+            n_impacts: 1,
+            solver: 0,
+            tolerance: 1e-12,
+        };
+        g.bench_with_input(BenchmarkId::from_parameter(blocks), &blocks, |b, _| {
+            b.iter(|| {
+                let mut s = st.clone();
+                let mut vv = v.clone();
+                let code = unsafe {
+                    rocking_impact_model(
+                        blocks,
+                        mass.as_ptr(),
+                        s.as_mut_ptr(),
+                        vv.as_mut_ptr(),
+                        blocks - 1,
+                        &opts,
+                        std::ptr::null_mut(),
+                    )
+                };
+                assert_eq!(code, 0);
+            })
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, impacts, openings, c_abi);
+criterion_main!(benches);
