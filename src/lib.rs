@@ -8,4 +8,5 @@
 #![allow(clippy::needless_range_loop)]
 
 pub mod column;
+pub mod design;
 pub mod single_block;
