@@ -76,6 +76,14 @@
 // Internal error: a panic was caught at the boundary (a bug; please report it).
 #define ROCKING_ERR_INTERNAL 99
 
+// `α` of a uniform rectangular block: `θ = α m R²` with `θ` the moment of inertia about a bottom
+// corner (thesis Eq. 13, Fig. 7).
+#define ALPHA_UNIFORM (4.0 / 3.0)
+
+// `α` of a point mass (a pier whose mass is concentrated at its top, its own weight neglected;
+// thesis Eq. 22–23, Fig. 51): `θ = m R²`.
+#define ALPHA_POINT_MASS 1.0
+
 // Options of both models. Passing NULL means `{1, 0, 1e-12}`.
 typedef struct RockingOptions {
   // Consecutive impacts per closing: 1 = Housner, 2 = one bump in the middle (the thesis's

@@ -14,19 +14,19 @@
 
 use std::fmt;
 
-/// Standard acceleration of gravity used by the thesis [m/s²].
+/// Standard acceleration of gravity used by the thesis (m/s²).
 pub const GRAVITY: f64 = 9.81;
 
 /// One rigid block of a column.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Block {
-    /// Width `w` [m].
+    /// Width `w` (m).
     pub width: f64,
-    /// Height `h` [m].
+    /// Height `h` (m).
     pub height: f64,
-    /// Mass `m` [kg].
+    /// Mass `m` (kg).
     pub mass: f64,
-    /// Moment of inertia about the centre of mass [kg m²]; `None` is the uniform rectangle
+    /// Moment of inertia about the centre of mass (kg m²); `None` is the uniform rectangle
     /// `m (w² + h²) / 12`.
     pub inertia: Option<f64>,
     /// Width of the contact under this block (its interface with the block below or the ground);
