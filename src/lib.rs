@@ -5,5 +5,5 @@
 //! See `ARCHITECTURE.md` for the map of modules and where each thesis equation lives.
 
 pub mod column;
-
+pub mod excitation;
 pub mod records;
