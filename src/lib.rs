@@ -14,10 +14,12 @@ pub mod configuration;
 pub mod design;
 pub mod enumeration;
 pub mod error;
+pub mod excitation;
 pub mod ffi;
 pub mod impact;
 pub mod opening;
 pub mod projection;
+pub mod records;
 pub mod samples;
 pub mod single_block;
 
