@@ -22,6 +22,9 @@
 #include <stddef.h>
 #include <stdint.h>
 
+// Largest `γ` accepted for the Mavroeidis–Papageorgiou pulse.
+#define MP_GAMMA_MAX 100.0
+
 // ABI version of this header; bumped on any incompatible change of a signature or struct.
 #define ROCKING_ABI_VERSION 1
 
@@ -73,8 +76,29 @@
 // The projection solver did not converge.
 #define ROCKING_ERR_SOLVER_DID_NOT_CONVERGE 3
 
+// The inputs are finite but so large that the result overflows.
+#define ROCKING_ERR_OVERFLOW 4
+
 // Internal error: a panic was caught at the boundary (a bug; please report it).
 #define ROCKING_ERR_INTERNAL 99
+
+// Kanai–Tajimi ground damping ratio ζ_g of [`synthetic_record`].
+#define SYNTHETIC_ZETA_G 0.6
+
+// Clough–Penzien damping ratio ζ_f of [`synthetic_record`].
+#define SYNTHETIC_ZETA_F 0.6
+
+// Seed of the bundled `examples/records/synthetic.AT2`.
+#define SYNTHETIC_SEED 20170101
+
+// Duration of the bundled synthetic record \[s\].
+#define SYNTHETIC_DURATION 20.0
+
+// Time step of the bundled synthetic record \[s\].
+#define SYNTHETIC_DT 0.01
+
+// PGA of the bundled synthetic record, in g.
+#define SYNTHETIC_PGA_G 0.3
 
 // `α` of a uniform rectangular block: `θ = α m R²` with `θ` the moment of inertia about a bottom
 // corner (thesis Eq. 13, Fig. 7).

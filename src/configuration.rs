@@ -184,3 +184,15 @@ pub fn statuses_from_angles(phi: &[f64]) -> Result<Vec<Status>, RockingError> {
         })
         .collect()
 }
+
+/// Checks that a model's outputs are finite (finite but huge inputs can overflow).
+pub fn check_result(values: &[f64], energies: &[f64]) -> Result<(), RockingError> {
+    if values.iter().chain(energies).all(|v| v.is_finite()) {
+        Ok(())
+    } else {
+        Err(RockingError::new(
+            ErrorKind::Overflow,
+            "a velocity, acceleration or kinetic energy of the result is not finite",
+        ))
+    }
+}

@@ -69,6 +69,8 @@ codes! {
     EnumerationTooLarge = 2, "enumeration refused: more closed interfaces than the enumeration limit (use the projection solver)";
     /// The projection solver did not converge within its iteration limit.
     SolverDidNotConverge = 3, "the projection solver did not converge within its iteration limit";
+    /// The inputs are finite but so large that the result overflows.
+    Overflow = 4, "the result is not finite: the inputs are too large for double precision";
     /// An internal error (a bug): a panic was caught at the boundary.
     Internal = 99, "internal error (a panic was caught at the library boundary); please report it";
 }

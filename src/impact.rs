@@ -219,6 +219,7 @@ pub fn impact_model(
         v[n + closing] = 0.0;
     }
     report.kinetic_after = kinetic_energy(mass, &v);
+    crate::configuration::check_result(&v, &[report.kinetic_before, report.kinetic_after])?;
     statuses.copy_from_slice(&st);
     velocity.copy_from_slice(&v);
     Ok(report)

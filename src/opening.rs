@@ -91,6 +91,7 @@ pub fn opening_model(
         runner_up: 0.5 * sol.runner_up,
         condition_estimate: sol.condition,
     };
+    crate::configuration::check_result(&a, &[report.kinetic_after])?;
     statuses.copy_from_slice(&st);
     acceleration.copy_from_slice(&a);
     Ok(report)

@@ -51,6 +51,8 @@ pub const ROCKING_ERR_NOT_POSITIVE_DEFINITE: i32 = 1;
 pub const ROCKING_ERR_ENUMERATION_TOO_LARGE: i32 = 2;
 /// The projection solver did not converge.
 pub const ROCKING_ERR_SOLVER_DID_NOT_CONVERGE: i32 = 3;
+/// The inputs are finite but so large that the result overflows.
+pub const ROCKING_ERR_OVERFLOW: i32 = 4;
 /// Internal error: a panic was caught at the boundary (a bug; please report it).
 pub const ROCKING_ERR_INTERNAL: i32 = 99;
 
@@ -457,6 +459,7 @@ pub unsafe extern "C" fn rocking_column_mass_matrix(
         let mass = column.mass_matrix(&pose);
         let load = column.load_vector(&pose, ground_acceleration, gravity);
         debug_assert_eq!(mass.len(), mm);
+        configuration::check_result(&mass, &load)?;
         write_array(mass_out, &mass);
         if !load_out.is_null() {
             write_array(load_out, &load);
@@ -514,6 +517,7 @@ pub unsafe extern "C" fn rocking_reduce(
         let mut rm = vec![0.0; n_reduced * n_reduced];
         let mut rl = vec![0.0; n_reduced];
         crate::column::reduce(n_nodal, n_reduced, &mass, &b, &p, &mut rm, &mut rl);
+        configuration::check_result(&rm, &rl)?;
         write_array(reduced_mass, &rm);
         if want_load {
             write_array(reduced_load, &rl);

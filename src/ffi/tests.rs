@@ -553,6 +553,7 @@ fn codes_and_messages() {
             ROCKING_ERR_SOLVER_DID_NOT_CONVERGE,
             ErrorKind::SolverDidNotConverge,
         ),
+        (ROCKING_ERR_OVERFLOW, ErrorKind::Overflow),
         (ROCKING_ERR_INTERNAL, ErrorKind::Internal),
     ];
     assert_eq!(pairs.len(), ErrorKind::ALL.len());
