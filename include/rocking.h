@@ -43,7 +43,7 @@
 // An input value is NaN or infinite.
 #define ROCKING_ERR_NOT_FINITE -3
 
-// The mass matrix is not symmetric (relative 1e-9 of its largest entry).
+// The mass matrix is not symmetric (entry-wise relative 1e-9).
 #define ROCKING_ERR_NOT_SYMMETRIC -4
 
 // A status value is outside −1..1.

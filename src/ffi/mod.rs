@@ -29,7 +29,7 @@ pub const ROCKING_ERR_NULL_POINTER: i32 = -1;
 pub const ROCKING_ERR_INVALID_SIZE: i32 = -2;
 /// An input value is NaN or infinite.
 pub const ROCKING_ERR_NOT_FINITE: i32 = -3;
-/// The mass matrix is not symmetric (relative 1e-9 of its largest entry).
+/// The mass matrix is not symmetric (entry-wise relative 1e-9).
 pub const ROCKING_ERR_NOT_SYMMETRIC: i32 = -4;
 /// A status value is outside −1..1.
 pub const ROCKING_ERR_INVALID_STATUS: i32 = -5;
