@@ -8,6 +8,7 @@ pub mod column;
 pub mod cholesky;
 pub mod cone;
 pub mod configuration;
+pub mod driver;
 pub mod enumeration;
 pub mod error;
 pub mod impact;
