@@ -13,7 +13,11 @@ mod simulate;
 mod thesis;
 
 #[derive(Parser)]
-#[command(name = "rocking", version, about = "Rocking columns of rigid blocks: time histories, spectra, design")]
+#[command(
+    name = "rocking",
+    version,
+    about = "Rocking columns of rigid blocks: time histories, spectra, design"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,

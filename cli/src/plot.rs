@@ -11,7 +11,8 @@ pub enum Style {
     Line,
     /// A dashed polyline.
     Dashed,
-    /// Dots.
+    /// Dots (spectra: one dot per overturning point).
+    #[allow(dead_code)]
     Points,
 }
 
@@ -45,7 +46,9 @@ pub struct Chart {
 }
 
 /// A palette that prints well in colour and in grey.
-pub const COLORS: [&str; 8] = ["#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#17becf", "#8c564b", "#7f7f7f"];
+pub const COLORS: [&str; 8] = [
+    "#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#17becf", "#8c564b", "#7f7f7f",
+];
 
 const WIDTH: f64 = 900.0;
 const HEIGHT: f64 = 520.0;
@@ -70,7 +73,9 @@ fn nice_step(span: f64) -> f64 {
 }
 
 fn escape(s: &str) -> String {
-    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;")
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
 }
 
 fn fmt_tick(v: f64) -> String {
@@ -108,7 +113,10 @@ impl Chart {
             return if log { (1.0, 10.0) } else { (0.0, 1.0) };
         }
         if log {
-            (10f64.powf(lo.log10().floor()), 10f64.powf(hi.log10().ceil().max(lo.log10().floor() + 1.0)))
+            (
+                10f64.powf(lo.log10().floor()),
+                10f64.powf(hi.log10().ceil().max(lo.log10().floor() + 1.0)),
+            )
         } else if hi - lo < 1e-300 {
             (lo - 1.0, hi + 1.0)
         } else {
@@ -124,11 +132,19 @@ impl Chart {
         let pw = WIDTH - LEFT - RIGHT;
         let ph = HEIGHT - TOP - BOTTOM;
         let tx = |v: f64| {
-            let f = if self.x_log { (v.log10() - x0.log10()) / (x1.log10() - x0.log10()) } else { (v - x0) / (x1 - x0) };
+            let f = if self.x_log {
+                (v.log10() - x0.log10()) / (x1.log10() - x0.log10())
+            } else {
+                (v - x0) / (x1 - x0)
+            };
             LEFT + f * pw
         };
         let ty = |v: f64| {
-            let f = if self.y_log { (v.log10() - y0.log10()) / (y1.log10() - y0.log10()) } else { (v - y0) / (y1 - y0) };
+            let f = if self.y_log {
+                (v.log10() - y0.log10()) / (y1.log10() - y0.log10())
+            } else {
+                (v - y0) / (y1 - y0)
+            };
             TOP + (1.0 - f) * ph
         };
         let mut s = String::new();
@@ -137,7 +153,12 @@ impl Chart {
             r#"<svg xmlns="http://www.w3.org/2000/svg" width="{WIDTH}" height="{HEIGHT}" viewBox="0 0 {WIDTH} {HEIGHT}" font-family="DejaVu Sans, Arial, sans-serif" font-size="13">"#
         );
         let _ = writeln!(s, r#"<rect width="100%" height="100%" fill="white"/>"#);
-        let _ = writeln!(s, r#"<text x="{}" y="28" font-size="16" text-anchor="middle">{}</text>"#, LEFT + pw / 2.0, escape(&self.title));
+        let _ = writeln!(
+            s,
+            r#"<text x="{}" y="28" font-size="16" text-anchor="middle">{}</text>"#,
+            LEFT + pw / 2.0,
+            escape(&self.title)
+        );
         // Grid and ticks.
         let ticks = |lo: f64, hi: f64, log: bool| -> Vec<f64> {
             if log {
@@ -156,16 +177,44 @@ impl Chart {
         };
         for t in ticks(x0, x1, self.x_log) {
             let x = tx(t);
-            let _ = writeln!(s, r##"<line x1="{x:.1}" y1="{TOP}" x2="{x:.1}" y2="{:.1}" stroke="#e0e0e0"/>"##, TOP + ph);
-            let _ = writeln!(s, r#"<text x="{x:.1}" y="{:.1}" text-anchor="middle">{}</text>"#, TOP + ph + 18.0, fmt_tick(t));
+            let _ = writeln!(
+                s,
+                r##"<line x1="{x:.1}" y1="{TOP}" x2="{x:.1}" y2="{:.1}" stroke="#e0e0e0"/>"##,
+                TOP + ph
+            );
+            let _ = writeln!(
+                s,
+                r#"<text x="{x:.1}" y="{:.1}" text-anchor="middle">{}</text>"#,
+                TOP + ph + 18.0,
+                fmt_tick(t)
+            );
         }
         for t in ticks(y0, y1, self.y_log) {
             let y = ty(t);
-            let _ = writeln!(s, r##"<line x1="{LEFT}" y1="{y:.1}" x2="{:.1}" y2="{y:.1}" stroke="#e0e0e0"/>"##, LEFT + pw);
-            let _ = writeln!(s, r#"<text x="{:.1}" y="{:.1}" text-anchor="end">{}</text>"#, LEFT - 6.0, y + 4.0, fmt_tick(t));
+            let _ = writeln!(
+                s,
+                r##"<line x1="{LEFT}" y1="{y:.1}" x2="{:.1}" y2="{y:.1}" stroke="#e0e0e0"/>"##,
+                LEFT + pw
+            );
+            let _ = writeln!(
+                s,
+                r#"<text x="{:.1}" y="{:.1}" text-anchor="end">{}</text>"#,
+                LEFT - 6.0,
+                y + 4.0,
+                fmt_tick(t)
+            );
         }
-        let _ = writeln!(s, r##"<rect x="{LEFT}" y="{TOP}" width="{pw}" height="{ph}" fill="none" stroke="#333"/>"##);
-        let _ = writeln!(s, r#"<text x="{:.1}" y="{:.1}" text-anchor="middle">{}</text>"#, LEFT + pw / 2.0, HEIGHT - 15.0, escape(&self.x_label));
+        let _ = writeln!(
+            s,
+            r##"<rect x="{LEFT}" y="{TOP}" width="{pw}" height="{ph}" fill="none" stroke="#333"/>"##
+        );
+        let _ = writeln!(
+            s,
+            r#"<text x="{:.1}" y="{:.1}" text-anchor="middle">{}</text>"#,
+            LEFT + pw / 2.0,
+            HEIGHT - 15.0,
+            escape(&self.x_label)
+        );
         let _ = writeln!(
             s,
             r#"<text x="20" y="{:.1}" text-anchor="middle" transform="rotate(-90 20 {:.1})">{}</text>"#,
@@ -185,18 +234,30 @@ impl Chart {
             );
         }
         // Series, clipped to the plot.
-        let _ = writeln!(s, r#"<clipPath id="plot"><rect x="{LEFT}" y="{TOP}" width="{pw}" height="{ph}"/></clipPath><g clip-path="url(#plot)">"#);
+        let _ = writeln!(
+            s,
+            r#"<clipPath id="plot"><rect x="{LEFT}" y="{TOP}" width="{pw}" height="{ph}"/></clipPath><g clip-path="url(#plot)">"#
+        );
         for series in &self.series {
             let pts: Vec<(f64, f64)> = series
                 .points
                 .iter()
-                .filter(|(x, y)| x.is_finite() && y.is_finite() && (!self.x_log || *x > 0.0) && (!self.y_log || *y > 0.0))
+                .filter(|(x, y)| {
+                    x.is_finite()
+                        && y.is_finite()
+                        && (!self.x_log || *x > 0.0)
+                        && (!self.y_log || *y > 0.0)
+                })
                 .map(|&(x, y)| (tx(x), ty(y)))
                 .collect();
             match series.style {
                 Style::Points => {
                     for (x, y) in pts {
-                        let _ = writeln!(s, r#"<circle cx="{x:.1}" cy="{y:.1}" r="2.2" fill="{}"/>"#, series.color);
+                        let _ = writeln!(
+                            s,
+                            r#"<circle cx="{x:.1}" cy="{y:.1}" r="2.2" fill="{}"/>"#,
+                            series.color
+                        );
                     }
                 }
                 Style::Line | Style::Dashed => {
@@ -204,8 +265,16 @@ impl Chart {
                     for (i, (x, y)) in pts.iter().enumerate() {
                         let _ = write!(d, "{}{x:.2},{y:.2} ", if i == 0 { "M" } else { "L" });
                     }
-                    let dash = if series.style == Style::Dashed { r#" stroke-dasharray="7,4""# } else { "" };
-                    let _ = writeln!(s, r#"<path d="{d}" fill="none" stroke="{}" stroke-width="1.4"{dash}/>"#, series.color);
+                    let dash = if series.style == Style::Dashed {
+                        r#" stroke-dasharray="7,4""#
+                    } else {
+                        ""
+                    };
+                    let _ = writeln!(
+                        s,
+                        r#"<path d="{d}" fill="none" stroke="{}" stroke-width="1.4"{dash}/>"#,
+                        series.color
+                    );
                 }
             }
         }
@@ -216,14 +285,35 @@ impl Chart {
         for series in &self.series {
             match series.style {
                 Style::Points => {
-                    let _ = writeln!(s, r#"<circle cx="{:.1}" cy="{:.1}" r="3" fill="{}"/>"#, lx + 12.0, ly, series.color);
+                    let _ = writeln!(
+                        s,
+                        r#"<circle cx="{:.1}" cy="{:.1}" r="3" fill="{}"/>"#,
+                        lx + 12.0,
+                        ly,
+                        series.color
+                    );
                 }
                 _ => {
-                    let dash = if series.style == Style::Dashed { r#" stroke-dasharray="7,4""# } else { "" };
-                    let _ = writeln!(s, r#"<line x1="{lx}" y1="{ly:.1}" x2="{:.1}" y2="{ly:.1}" stroke="{}" stroke-width="2"{dash}/>"#, lx + 24.0, series.color);
+                    let dash = if series.style == Style::Dashed {
+                        r#" stroke-dasharray="7,4""#
+                    } else {
+                        ""
+                    };
+                    let _ = writeln!(
+                        s,
+                        r#"<line x1="{lx}" y1="{ly:.1}" x2="{:.1}" y2="{ly:.1}" stroke="{}" stroke-width="2"{dash}/>"#,
+                        lx + 24.0,
+                        series.color
+                    );
                 }
             }
-            let _ = writeln!(s, r#"<text x="{:.1}" y="{:.1}">{}</text>"#, lx + 30.0, ly + 4.0, escape(&series.name));
+            let _ = writeln!(
+                s,
+                r#"<text x="{:.1}" y="{:.1}">{}</text>"#,
+                lx + 30.0,
+                ly + 4.0,
+                escape(&series.name)
+            );
             ly += 20.0;
         }
         let mut kinds: Vec<(&str, &str)> = Vec::new();
@@ -234,8 +324,18 @@ impl Chart {
             }
         }
         for (kind, color) in kinds {
-            let _ = writeln!(s, r#"<line x1="{lx}" y1="{ly:.1}" x2="{:.1}" y2="{ly:.1}" stroke="{color}" stroke-dasharray="2,3" stroke-width="1.5"/>"#, lx + 24.0);
-            let _ = writeln!(s, r#"<text x="{:.1}" y="{:.1}">{}</text>"#, lx + 30.0, ly + 4.0, escape(kind));
+            let _ = writeln!(
+                s,
+                r#"<line x1="{lx}" y1="{ly:.1}" x2="{:.1}" y2="{ly:.1}" stroke="{color}" stroke-dasharray="2,3" stroke-width="1.5"/>"#,
+                lx + 24.0
+            );
+            let _ = writeln!(
+                s,
+                r#"<text x="{:.1}" y="{:.1}">{}</text>"#,
+                lx + 30.0,
+                ly + 4.0,
+                escape(kind)
+            );
             ly += 20.0;
         }
         s.push_str("</svg>\n");
@@ -245,13 +345,21 @@ impl Chart {
     /// Writes the chart as SVG or PNG, chosen by the file extension.
     pub fn write(&self, path: &Path) -> Result<(), String> {
         let svg = self.to_svg();
-        match path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {
+        match path
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(str::to_ascii_lowercase)
+            .as_deref()
+        {
             Some("svg") => crate::output::write_atomic(path, svg.as_bytes()),
             Some("png") => {
                 let png = svg_to_png(&svg)?;
                 crate::output::write_atomic(path, &png)
             }
-            _ => Err(format!("{}: the plot file must end in .svg or .png", path.display())),
+            _ => Err(format!(
+                "{}: the plot file must end in .svg or .png",
+                path.display()
+            )),
         }
     }
 }
@@ -261,9 +369,13 @@ pub fn svg_to_png(svg: &str) -> Result<Vec<u8>, String> {
     use resvg::{tiny_skia, usvg};
     let mut opt = usvg::Options::default();
     opt.fontdb_mut().load_system_fonts();
-    let tree = usvg::Tree::from_str(svg, &opt).map_err(|e| format!("cannot render the plot: {e}"))?;
+    let tree =
+        usvg::Tree::from_str(svg, &opt).map_err(|e| format!("cannot render the plot: {e}"))?;
     let size = tree.size().to_int_size();
-    let mut pixmap = tiny_skia::Pixmap::new(size.width(), size.height()).ok_or("cannot allocate the image")?;
+    let mut pixmap =
+        tiny_skia::Pixmap::new(size.width(), size.height()).ok_or("cannot allocate the image")?;
     resvg::render(&tree, tiny_skia::Transform::default(), &mut pixmap.as_mut());
-    pixmap.encode_png().map_err(|e| format!("cannot encode the PNG: {e}"))
+    pixmap
+        .encode_png()
+        .map_err(|e| format!("cannot encode the PNG: {e}"))
 }

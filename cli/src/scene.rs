@@ -46,7 +46,11 @@ pub enum ExcitationSpec {
     FullSine { amplitude: f64, duration: f64 },
     /// `count` consecutive half sines of alternating sign, each lasting `duration` (thesis Fig. 8c:
     /// three half sines).
-    HalfSines { amplitude: f64, duration: f64, count: u32 },
+    HalfSines {
+        amplitude: f64,
+        duration: f64,
+        count: u32,
+    },
     /// Constant `amplitude` on `[0, duration)`.
     Rectangular { amplitude: f64, duration: f64 },
     /// Symmetric triangle peaking at `duration / 2`.
@@ -54,7 +58,12 @@ pub enum ExcitationSpec {
     /// Ricker wavelet of peak `amplitude` and central `frequency` [Hz].
     Ricker { amplitude: f64, frequency: f64 },
     /// Mavroeidis–Papageorgiou (2003) pulse of peak acceleration `amplitude`.
-    MavroeidisPapageorgiou { amplitude: f64, frequency: f64, gamma: f64, nu: f64 },
+    MavroeidisPapageorgiou {
+        amplitude: f64,
+        frequency: f64,
+        gamma: f64,
+        nu: f64,
+    },
     /// A recorded motion: PEER `.AT2` (in g), or plain text (one column with `dt`, or two
     /// columns t, a) in m/s² unless `units` is "g". Scaled to `scale_to_pga` [m/s²] if given.
     Record {
@@ -180,7 +189,8 @@ fn err(field: &str, message: impl std::fmt::Display) -> SceneError {
 
 /// Reads and checks a scene file.
 pub fn load(path: &Path) -> Result<Scene, SceneError> {
-    let text = std::fs::read_to_string(path).map_err(|e| SceneError(format!("cannot read {}: {e}", path.display())))?;
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| SceneError(format!("cannot read {}: {e}", path.display())))?;
     let spec: SceneSpec =
         serde_json::from_str(&text).map_err(|e| SceneError(format!("{}: {e}", path.display())))?;
     let base = path.parent().unwrap_or(Path::new("."));
@@ -209,7 +219,10 @@ pub fn build(spec: SceneSpec, base: &Path, name: &str) -> Result<Scene, SceneErr
             field,
             value,
             reason,
-        } => err(&format!("blocks[{block}].{field}"), format!("{value}: {reason}")),
+        } => err(
+            &format!("blocks[{block}].{field}"),
+            format!("{value}: {reason}"),
+        ),
         other => err("blocks", other),
     })?;
     let excitation = excitation(&spec.excitation, base)?;
@@ -219,11 +232,19 @@ pub fn build(spec: SceneSpec, base: &Path, name: &str) -> Result<Scene, SceneErr
             "wilson" | "wilson_theta" => Integrator::default(),
             "newmark" => Integrator::Newmark,
             "rk4" => Integrator::Rk4,
-            other => return Err(err("integrator", format!("unknown integrator {other:?} (wilson, newmark, rk4)"))),
+            other => {
+                return Err(err(
+                    "integrator",
+                    format!("unknown integrator {other:?} (wilson, newmark, rk4)"),
+                ))
+            }
         },
         Some(IntegratorSpec::Wilson { kind, theta }) => {
             if kind != "wilson" && kind != "wilson_theta" {
-                return Err(err("integrator.type", format!("{kind:?}: only \"wilson\" takes parameters")));
+                return Err(err(
+                    "integrator.type",
+                    format!("{kind:?}: only \"wilson\" takes parameters"),
+                ));
             }
             Integrator::WilsonTheta { theta: *theta }
         }
@@ -231,13 +252,23 @@ pub fn build(spec: SceneSpec, base: &Path, name: &str) -> Result<Scene, SceneErr
     let locator = match spec.locator.as_deref() {
         None | Some("linear") => EventLocator::Linear,
         Some("hermite") => EventLocator::Hermite,
-        Some(other) => return Err(err("locator", format!("unknown locator {other:?} (linear, hermite)"))),
+        Some(other) => {
+            return Err(err(
+                "locator",
+                format!("unknown locator {other:?} (linear, hermite)"),
+            ))
+        }
     };
     let solver = match spec.solver.as_deref() {
         None | Some("auto") => Solver::Auto,
         Some("enumerate") => Solver::Enumerate,
         Some("projection") => Solver::Projection,
-        Some(other) => return Err(err("solver", format!("unknown solver {other:?} (auto, enumerate, projection)"))),
+        Some(other) => {
+            return Err(err(
+                "solver",
+                format!("unknown solver {other:?} (auto, enumerate, projection)"),
+            ))
+        }
     };
     if spec.output.every == 0 {
         return Err(err("output.every", "must be >= 1"));
@@ -265,7 +296,11 @@ pub fn build(spec: SceneSpec, base: &Path, name: &str) -> Result<Scene, SceneErr
         ..defaults
     };
     options.validate(&column).map_err(|e| match e {
-        rocking::driver::DriverError::InvalidOption { field, value, reason } => {
+        rocking::driver::DriverError::InvalidOption {
+            field,
+            value,
+            reason,
+        } => {
             let field = match field {
                 "model.n_impacts" => "impacts",
                 f => f,
@@ -273,7 +308,11 @@ pub fn build(spec: SceneSpec, base: &Path, name: &str) -> Result<Scene, SceneErr
             err(field, format!("{value}: {reason}"))
         }
         rocking::driver::DriverError::Model(e) => {
-            let field = if e.kind == rocking::ErrorKind::InvalidOptions { "impacts" } else { "scene" };
+            let field = if e.kind == rocking::ErrorKind::InvalidOptions {
+                "impacts"
+            } else {
+                "scene"
+            };
             err(field, e)
         }
     })?;
@@ -288,42 +327,142 @@ pub fn build(spec: SceneSpec, base: &Path, name: &str) -> Result<Scene, SceneErr
 
 fn excitation(spec: &ExcitationSpec, base: &Path) -> Result<Excitation, SceneError> {
     let pulse = |p: Result<Pulse, rocking::excitation::ExcitationError>| {
-        p.and_then(Excitation::pulse).map_err(|e| err("excitation", e))
+        p.and_then(Excitation::pulse)
+            .map_err(|e| err("excitation", e))
+    };
+    let positive = |field: &str, v: f64| {
+        if v.is_finite() && v > 0.0 {
+            Ok(())
+        } else {
+            Err(err(
+                &format!("excitation.{field}"),
+                format!("{v}: must be a finite number greater than zero"),
+            ))
+        }
+    };
+    let finite = |field: &str, v: f64| {
+        if v.is_finite() {
+            Ok(())
+        } else {
+            Err(err(
+                &format!("excitation.{field}"),
+                format!("{v}: must be finite"),
+            ))
+        }
     };
     match spec {
+        ExcitationSpec::None | ExcitationSpec::Record { .. } => {}
+        ExcitationSpec::HalfSine {
+            amplitude,
+            duration,
+        }
+        | ExcitationSpec::FullSine {
+            amplitude,
+            duration,
+        }
+        | ExcitationSpec::Rectangular {
+            amplitude,
+            duration,
+        }
+        | ExcitationSpec::Triangular {
+            amplitude,
+            duration,
+        }
+        | ExcitationSpec::HalfSines {
+            amplitude,
+            duration,
+            ..
+        } => {
+            finite("amplitude", *amplitude)?;
+            positive("duration", *duration)?;
+        }
+        ExcitationSpec::Ricker {
+            amplitude,
+            frequency,
+        } => {
+            finite("amplitude", *amplitude)?;
+            positive("frequency", *frequency)?;
+        }
+        ExcitationSpec::MavroeidisPapageorgiou {
+            amplitude,
+            frequency,
+            nu,
+            ..
+        } => {
+            finite("amplitude", *amplitude)?;
+            positive("frequency", *frequency)?;
+            finite("nu", *nu)?;
+        }
+    }
+    if let ExcitationSpec::HalfSines { count: 0, .. } = spec {
+        return Err(err("excitation.count", "0: must be >= 1"));
+    }
+    match spec {
         ExcitationSpec::None => Ok(Excitation::None),
-        ExcitationSpec::HalfSine { amplitude, duration } => pulse(Pulse::half_sine(*amplitude, *duration)),
-        ExcitationSpec::FullSine { amplitude, duration } => pulse(Pulse::full_sine(*amplitude, 0.5 * duration)),
+        ExcitationSpec::HalfSine {
+            amplitude,
+            duration,
+        } => pulse(Pulse::half_sine(*amplitude, *duration)),
+        ExcitationSpec::FullSine {
+            amplitude,
+            duration,
+        } => pulse(Pulse::full_sine(*amplitude, 0.5 * duration)),
         ExcitationSpec::HalfSines {
             amplitude,
             duration,
             count,
         } => pulse(Pulse::half_sines(*amplitude, *duration, *count)),
-        ExcitationSpec::Rectangular { amplitude, duration } => pulse(Pulse::rectangular(*amplitude, *duration)),
-        ExcitationSpec::Triangular { amplitude, duration } => pulse(Pulse::triangular(*amplitude, *duration)),
-        ExcitationSpec::Ricker { amplitude, frequency } => pulse(Pulse::ricker(*amplitude, *frequency)),
+        ExcitationSpec::Rectangular {
+            amplitude,
+            duration,
+        } => pulse(Pulse::rectangular(*amplitude, *duration)),
+        ExcitationSpec::Triangular {
+            amplitude,
+            duration,
+        } => pulse(Pulse::triangular(*amplitude, *duration)),
+        ExcitationSpec::Ricker {
+            amplitude,
+            frequency,
+        } => pulse(Pulse::ricker(*amplitude, *frequency)),
         ExcitationSpec::MavroeidisPapageorgiou {
             amplitude,
             frequency,
             gamma,
             nu,
-        } => pulse(Pulse::mavroeidis_papageorgiou(*amplitude, *frequency, *gamma, *nu)),
+        } => pulse(Pulse::mavroeidis_papageorgiou(
+            *amplitude, *frequency, *gamma, *nu,
+        )),
         ExcitationSpec::Record {
             path,
             scale_to_pga,
             dt,
             units,
         } => {
-            let full = if path.is_absolute() { path.clone() } else { base.join(path) };
-            let mut format = PlainFormat { dt: *dt, ..PlainFormat::default() };
+            let full = if path.is_absolute() {
+                path.clone()
+            } else {
+                base.join(path)
+            };
+            let mut format = PlainFormat {
+                dt: *dt,
+                ..PlainFormat::default()
+            };
             match units.as_deref() {
                 None | Some("m/s2") | Some("m/s^2") => {}
                 Some("g") => format = format.in_g(),
-                Some(other) => return Err(err("excitation.units", format!("unknown units {other:?} (m/s2, g)"))),
+                Some(other) => {
+                    return Err(err(
+                        "excitation.units",
+                        format!("unknown units {other:?} (m/s2, g)"),
+                    ))
+                }
             }
-            let mut record = records::read_record(&full, &format).map_err(|e| err("excitation.path", e))?;
+            let mut record =
+                records::read_record(&full, &format).map_err(|e| err("excitation.path", e))?;
             if let Some(target) = scale_to_pga {
-                record = record.scaled_to_pga(*target).map_err(|e| err("excitation.scale_to_pga", e))?;
+                record = record
+                    .scaled_to_pga(*target)
+                    .map_err(|e| err("excitation.scale_to_pga", e))?;
             }
             Excitation::record(record).map_err(|e| err("excitation", e))
         }
@@ -355,18 +494,50 @@ mod tests {
     fn errors_name_the_field() {
         let cases = [
             (GOOD.replace("\"dt\": 0.001", "\"dt\": -1"), "dt"),
-            (GOOD.replace("\"dt\": 0.001", "\"dt\": 0.001, \"colour\": 1"), "unknown field `colour`"),
-            (GOOD.replace("\"mass\": 10", "\"mass\": 0"), "blocks[0].mass"),
-            (GOOD.replace("\"half_sine\"", "\"square\""), "unknown variant `square`"),
-            (GOOD.replace("\"duration\": 0.3", "\"duration\": 0.0"), "duration"),
-            (GOOD.replace("\"duration\": 1.0,", "\"duration\": 1.0, \"impacts\": 0,"), "impacts"),
-            (GOOD.replace("\"duration\": 1.0,", "\"duration\": 1.0, \"integrator\": \"euler\","), "integrator"),
-            (GOOD.replace("\"duration\": 1.0,", "\"duration\": 1.0, \"initial_angles\": [0.1, 0.2],"), "initial_angles"),
-            (GOOD.replace("\"duration\": 1.0,", ""), "missing field `duration`"),
+            (
+                GOOD.replace("\"dt\": 0.001", "\"dt\": 0.001, \"colour\": 1"),
+                "unknown field `colour`",
+            ),
+            (
+                GOOD.replace("\"mass\": 10", "\"mass\": 0"),
+                "blocks[0].mass",
+            ),
+            (
+                GOOD.replace("\"half_sine\"", "\"square\""),
+                "unknown variant `square`",
+            ),
+            (
+                GOOD.replace("\"duration\": 0.3", "\"duration\": 0.0"),
+                "excitation.duration",
+            ),
+            (
+                GOOD.replace("\"duration\": 1.0,", "\"duration\": 1.0, \"impacts\": 0,"),
+                "impacts",
+            ),
+            (
+                GOOD.replace(
+                    "\"duration\": 1.0,",
+                    "\"duration\": 1.0, \"integrator\": \"euler\",",
+                ),
+                "integrator",
+            ),
+            (
+                GOOD.replace(
+                    "\"duration\": 1.0,",
+                    "\"duration\": 1.0, \"initial_angles\": [0.1, 0.2],",
+                ),
+                "initial_angles",
+            ),
+            (
+                GOOD.replace("\"duration\": 1.0,", ""),
+                "missing field `duration`",
+            ),
             ("{\"blocks\": [".to_string(), "EOF"),
         ];
         for (text, field) in cases {
-            let e = parse(&text).err().unwrap_or_else(|| panic!("accepted: {text}"));
+            let e = parse(&text)
+                .err()
+                .unwrap_or_else(|| panic!("accepted: {text}"));
             assert!(e.0.contains(field), "{field}: {}", e.0);
         }
     }

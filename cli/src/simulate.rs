@@ -21,7 +21,12 @@ pub fn run(scene_path: &Path, out: &Path, plot: Option<&Path>) -> Result<(), Str
     if let Some(p) = plot {
         match p.extension().and_then(|e| e.to_str()) {
             Some("svg") | Some("png") => {}
-            _ => return Err(format!("--plot {}: the file must end in .svg or .png", p.display())),
+            _ => {
+                return Err(format!(
+                    "--plot {}: the file must end in .svg or .png",
+                    p.display()
+                ))
+            }
         }
     }
     let scene = scene::load(scene_path).map_err(|e| e.to_string())?;
@@ -30,7 +35,8 @@ pub fn run(scene_path: &Path, out: &Path, plot: Option<&Path>) -> Result<(), Str
     let bar = progress_bar(1000, "simulating");
     let mut report = |fraction: f64| bar.set_position((fraction * 1000.0) as u64);
     let started = Instant::now();
-    let outcome = driver::simulate(&scene.column, &motion, &scene.options, Some(&mut report)).map_err(|e| e.to_string())?;
+    let outcome = driver::simulate(&scene.column, &motion, &scene.options, Some(&mut report))
+        .map_err(|e| e.to_string())?;
     let wall = started.elapsed().as_secs_f64();
     bar.finish_and_clear();
 
@@ -204,7 +210,10 @@ fn summary_json(scene: &Scene, path: &Path, o: &Outcome, wall: f64) -> Value {
 }
 
 fn chart(scene: &Scene, o: &Outcome) -> Result<Chart, String> {
-    let h = o.history.as_ref().ok_or("--plot needs the history (output.history must be true)")?;
+    let h = o
+        .history
+        .as_ref()
+        .ok_or("--plot needs the history (output.history must be true)")?;
     let n = h.n_interfaces;
     let mut chart = Chart {
         title: format!("{} — {}", scene.title, scene.excitation.describe()),
@@ -215,7 +224,9 @@ fn chart(scene: &Scene, o: &Outcome) -> Result<Chart, String> {
     for k in 0..n {
         chart.series.push(Series {
             name: format!("block {k}"),
-            points: (0..h.len()).map(|i| (h.t[i], h.block_angles_at(i)[k])).collect(),
+            points: (0..h.len())
+                .map(|i| (h.t[i], h.block_angles_at(i)[k]))
+                .collect(),
             style: Style::Line,
             color: COLORS[k % COLORS.len()],
         });
@@ -229,7 +240,12 @@ fn chart(scene: &Scene, o: &Outcome) -> Result<Chart, String> {
         };
         chart.markers.push(Marker {
             x: e.t,
-            label: format!("{} {}", kind_name(e.kind), e.interface.map_or(String::new(), |k| format!("at interface {k}"))),
+            label: format!(
+                "{} {}",
+                kind_name(e.kind),
+                e.interface
+                    .map_or(String::new(), |k| format!("at interface {k}"))
+            ),
             color,
         });
     }
