@@ -153,7 +153,12 @@ impl Column {
     }
 
     /// A column of `n` equal uniform rectangular blocks stacked to the given total height.
-    pub fn uniform(n: usize, width: f64, total_height: f64, total_mass: f64) -> Result<Column, ColumnError> {
+    pub fn uniform(
+        n: usize,
+        width: f64,
+        total_height: f64,
+        total_mass: f64,
+    ) -> Result<Column, ColumnError> {
         let h = total_height / n as f64;
         let m = total_mass / n as f64;
         Column::new((0..n).map(|_| Block::rectangle(width, h, m)).collect())
@@ -228,7 +233,10 @@ impl Column {
             if theta != 0.0 {
                 // T_k(r) = R_{α+θ} r + R_α (p − R_θ p) + t
                 let (ct, st) = (theta.cos(), theta.sin());
-                let d = [pref[0] - (ct * pref[0] - st * pref[1]), pref[1] - (st * pref[0] + ct * pref[1])];
+                let d = [
+                    pref[0] - (ct * pref[0] - st * pref[1]),
+                    pref[1] - (st * pref[0] + ct * pref[1]),
+                ];
                 t = [ca * d[0] - sa * d[1] + t[0], sa * d[0] + ca * d[1] + t[1]];
                 alpha += theta;
                 ca = alpha.cos();
@@ -478,7 +486,10 @@ impl Pose {
     /// Total mass of the part above interface `k` and its centre of mass.
     pub fn mass_above(&self, k: usize) -> (f64, [f64; 2]) {
         let s0 = self.suffix_mass[k];
-        (s0, [self.suffix_moment[k][0] / s0, self.suffix_moment[k][1] / s0])
+        (
+            s0,
+            [self.suffix_moment[k][0] / s0, self.suffix_moment[k][1] / s0],
+        )
     }
 }
 
@@ -507,7 +518,9 @@ pub fn reduce(
     for c in 0..n_reduced {
         let b = bcol(c);
         for (r, v) in mb.iter_mut().enumerate() {
-            *v = (0..n_nodal).map(|k| nodal_mass[k * n_nodal + r] * b[k]).sum();
+            *v = (0..n_nodal)
+                .map(|k| nodal_mass[k * n_nodal + r] * b[k])
+                .sum();
         }
         for r in 0..n_reduced {
             reduced_mass[c * n_reduced + r] = bcol(r).iter().zip(&mb).map(|(x, y)| x * y).sum();
@@ -539,7 +552,12 @@ pub fn three_mass_points(column: &Column, pose: &Pose) -> Vec<([f64; 2], f64)> {
 /// Transformation `B` of Appendix C (Eq. C2, C11, C14) from the `2n` interface DOFs to the
 /// x and y displacements of the given points: `points[i]` belongs to block `owner[i]`. Rows are
 /// all x components then all y components (`2·points` rows), column-major storage.
-pub fn transformation_matrix(column: &Column, pose: &Pose, points: &[[f64; 2]], owner: &[usize]) -> Vec<f64> {
+pub fn transformation_matrix(
+    column: &Column,
+    pose: &Pose,
+    points: &[[f64; 2]],
+    owner: &[usize],
+) -> Vec<f64> {
     assert_eq!(points.len(), owner.len());
     let n = column.n_interfaces();
     let rows = 2 * points.len();
@@ -563,7 +581,11 @@ mod tests {
     use super::*;
 
     fn two_granite() -> Column {
-        Column::new(vec![Block::rectangle(0.1, 0.3, 15.0), Block::rectangle(0.1, 0.3, 15.0)]).unwrap()
+        Column::new(vec![
+            Block::rectangle(0.1, 0.3, 15.0),
+            Block::rectangle(0.1, 0.3, 15.0),
+        ])
+        .unwrap()
     }
 
     /// Thesis Eq. 10: the 4×4 mass matrix of two 0.1 × 0.3 m, 15 kg blocks.
@@ -579,19 +601,31 @@ mod tests {
         ];
         for r in 0..4 {
             for c in 0..4 {
-                assert!((m[r * 4 + c] - expected[r][c]).abs() < 5e-4, "M[{r}][{c}] = {}", m[r * 4 + c]);
+                assert!(
+                    (m[r * 4 + c] - expected[r][c]).abs() < 5e-4,
+                    "M[{r}][{c}] = {}",
+                    m[r * 4 + c]
+                );
             }
         }
     }
 
     fn appendix_c_column() -> Column {
-        Column::new(vec![Block::rectangle(1.0, 4.0, 1.0), Block::rectangle(1.0, 4.0, 1.0)]).unwrap()
+        Column::new(vec![
+            Block::rectangle(1.0, 4.0, 1.0),
+            Block::rectangle(1.0, 4.0, 1.0),
+        ])
+        .unwrap()
     }
 
     /// Round to the printed digits and compare (`printed` has `decimals` decimals).
     fn printed(value: f64, printed: f64, decimals: i32) {
         let scale = 10f64.powi(decimals);
-        assert_eq!((value * scale).round() / scale, printed, "{value} does not print as {printed}");
+        assert_eq!(
+            (value * scale).round() / scale,
+            printed,
+            "{value} does not print as {printed}"
+        );
     }
 
     /// Appendix C, straight: `M̃` Eq. C13 and `p̃` Eq. C12 (rotations about the right corners).
@@ -628,7 +662,11 @@ mod tests {
     #[test]
     fn appendix_c_reduction_matches_direct_route() {
         let col = appendix_c_column();
-        for phi in [[0.0, 0.0, 0.0, 0.0], [0.0, -10f64.to_radians(), 0.0, 0.0], [-0.05, 0.0, 0.0, 0.2]] {
+        for phi in [
+            [0.0, 0.0, 0.0, 0.0],
+            [0.0, -10f64.to_radians(), 0.0, 0.0],
+            [-0.05, 0.0, 0.0, 0.2],
+        ] {
             let pose = col.pose(&phi);
             let pts = three_mass_points(&col, &pose);
             let np = pts.len();
@@ -673,7 +711,11 @@ mod tests {
     /// derivative of the centre velocities for a two-block chain.
     #[test]
     fn velocity_load_matches_finite_differences() {
-        let col = Column::new(vec![Block::rectangle(0.4, 1.2, 3.0), Block::rectangle(0.3, 0.9, 2.0)]).unwrap();
+        let col = Column::new(vec![
+            Block::rectangle(0.4, 1.2, 3.0),
+            Block::rectangle(0.3, 0.9, 2.0),
+        ])
+        .unwrap();
         let phi = [0.0, -0.1, 0.05, 0.0];
         let rates = [0.0, -0.7, 0.4, 0.0];
         let pose = col.pose(&phi);
@@ -709,6 +751,9 @@ mod tests {
         assert!(e.to_string().contains("height"));
         let mut b = Block::rectangle(1.0, 1.0, 1.0);
         b.contact_width = Some(2.0);
-        assert!(Column::new(vec![b]).unwrap_err().to_string().contains("contact_width"));
+        assert!(Column::new(vec![b])
+            .unwrap_err()
+            .to_string()
+            .contains("contact_width"));
     }
 }

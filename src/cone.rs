@@ -92,7 +92,10 @@ impl ModelOptions {
         if !(self.tolerance.is_finite() && self.tolerance > 0.0 && self.tolerance <= 1e-2) {
             return Err(RockingError::new(
                 ErrorKind::InvalidOptions,
-                format!("tolerance = {}, expected a finite value in (0, 0.01]", self.tolerance),
+                format!(
+                    "tolerance = {}, expected a finite value in (0, 0.01]",
+                    self.tolerance
+                ),
             ));
         }
         Ok(())
@@ -187,7 +190,13 @@ pub(crate) struct ConeProblem {
 impl ConeProblem {
     /// Builds `Â`, `b̂` from the row-major `m × m` mass matrix and the right-hand side `rhs`
     /// (`b = Dᵀ rhs`).
-    pub fn new(gens: Vec<Generator>, mass: &[f64], m: usize, rhs: &[f64], tolerance: f64) -> Result<ConeProblem, RockingError> {
+    pub fn new(
+        gens: Vec<Generator>,
+        mass: &[f64],
+        m: usize,
+        rhs: &[f64],
+        tolerance: f64,
+    ) -> Result<ConeProblem, RockingError> {
         let p = gens.len();
         let mut a = vec![0.0; p * p];
         let mut b = vec![0.0; p];
@@ -317,10 +326,20 @@ pub(crate) struct ConeSolution {
 pub(crate) const TIE_GAP: f64 = 1e-9;
 
 /// Solves a cone problem with the requested solver.
-pub(crate) fn solve(problem: &ConeProblem, options: &ModelOptions) -> Result<ConeSolution, RockingError> {
+pub(crate) fn solve(
+    problem: &ConeProblem,
+    options: &ModelOptions,
+) -> Result<ConeSolution, RockingError> {
     let n_closed = problem.groups.len();
     let solver = match options.solver {
-        Solver::Auto if n_closed <= options.auto_enumerate_up_to.min(options.max_enumerated_closed) => Solver::Enumerate,
+        Solver::Auto
+            if n_closed
+                <= options
+                    .auto_enumerate_up_to
+                    .min(options.max_enumerated_closed) =>
+        {
+            Solver::Enumerate
+        }
         Solver::Auto => Solver::Projection,
         s => s,
     };

@@ -71,7 +71,10 @@ pub fn decode_statuses(raw: &[i8]) -> Result<Vec<Status>, RockingError> {
         .enumerate()
         .map(|(k, &v)| {
             Status::from_i8(v).ok_or_else(|| {
-                RockingError::new(ErrorKind::InvalidStatus, format!("status[{k}] = {v}, expected -1, 0 or 1"))
+                RockingError::new(
+                    ErrorKind::InvalidStatus,
+                    format!("status[{k}] = {v}, expected -1, 0 or 1"),
+                )
             })
         })
         .collect()
@@ -87,13 +90,20 @@ pub fn encode_statuses(statuses: &[Status], out: &mut [i8]) {
 /// The open DOFs (indices into `0..2n`) of a configuration, in interface order.
 pub fn open_dofs(statuses: &[Status]) -> Vec<usize> {
     let n = statuses.len();
-    statuses.iter().enumerate().filter_map(|(k, s)| s.dof(k, n)).collect()
+    statuses
+        .iter()
+        .enumerate()
+        .filter_map(|(k, s)| s.dof(k, n))
+        .collect()
 }
 
 /// Checks the interface count.
 pub fn check_size(n: usize) -> Result<(), RockingError> {
     if n == 0 {
-        return Err(RockingError::new(ErrorKind::InvalidSize, "n_interfaces is 0"));
+        return Err(RockingError::new(
+            ErrorKind::InvalidSize,
+            "n_interfaces is 0",
+        ));
     }
     if n > MAX_INTERFACES {
         return Err(RockingError::new(
@@ -148,7 +158,10 @@ pub fn check_zero_off_configuration(
             let which = if i < n { "phĭ" } else { "phî" };
             return Err(RockingError::new(
                 kind,
-                format!("{name}[{i}] ({which}_{k}) = {v} but interface {k} has status {}", statuses[k].as_i8()),
+                format!(
+                    "{name}[{i}] ({which}_{k}) = {v} but interface {k} has status {}",
+                    statuses[k].as_i8()
+                ),
             ));
         }
     }

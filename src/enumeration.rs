@@ -71,7 +71,8 @@ pub(crate) fn solve(problem: &ConeProblem) -> Result<ConeSolution, RockingError>
         let mut u = 0;
         loop {
             if u == digits.len() {
-                let (criterion, set, x, condition) = best.expect("the all-closed configuration is always admissible");
+                let (criterion, set, x, condition) =
+                    best.expect("the all-closed configuration is always admissible");
                 let mut y_hat = vec![0.0; p];
                 for (&i, &v) in set.iter().zip(&x) {
                     y_hat[i] = v;

@@ -53,7 +53,11 @@ pub(crate) fn check_mass(n: usize, mass: &[f64]) -> Result<(), RockingError> {
     if mass.len() != m * m {
         return Err(RockingError::new(
             ErrorKind::InvalidSize,
-            format!("mass has {} entries, expected (2n)² = {}", mass.len(), m * m),
+            format!(
+                "mass has {} entries, expected (2n)² = {}",
+                mass.len(),
+                m * m
+            ),
         ));
     }
     configuration::check_symmetric(mass, m)?;
@@ -100,7 +104,12 @@ pub fn impact_model(
             format!("interface {closing} is closed; only an open interface can close"),
         ));
     };
-    configuration::check_zero_off_configuration("velocity", statuses, velocity, ErrorKind::VelocityOnClosedDof)?;
+    configuration::check_zero_off_configuration(
+        "velocity",
+        statuses,
+        velocity,
+        ErrorKind::VelocityOnClosedDof,
+    )?;
     if velocity[closing_dof] * corner.sign() > 0.0 {
         return Err(RockingError::new(
             ErrorKind::InconsistentState,
@@ -122,11 +131,16 @@ pub fn impact_model(
     // Rotation direction of the impacting interface (kept through the bumps), and the weight λ of
     // the left-corner DOF at the closing corner and at the opposite one.
     let direction = -corner.sign();
-    let (lambda_start, lambda_end) = if corner == Status::OpenLeft { (1.0, 0.0) } else { (0.0, 1.0) };
+    let (lambda_start, lambda_end) = if corner == Status::OpenLeft {
+        (1.0, 0.0)
+    } else {
+        (0.0, 1.0)
+    };
     let n_imp = options.n_impacts;
     let mut impacting_status = Status::Closed;
     for step in 1..=n_imp {
-        let lambda = lambda_start + (lambda_end - lambda_start) * f64::from(step) / f64::from(n_imp);
+        let lambda =
+            lambda_start + (lambda_end - lambda_start) * f64::from(step) / f64::from(n_imp);
         let mut gens = Vec::with_capacity(2 * n);
         for (j, s) in st.iter().enumerate() {
             if j == closing {
@@ -147,7 +161,10 @@ pub fn impact_model(
             Generator::unit(closing, direction, true, None)
         } else {
             Generator {
-                terms: [(n + closing, direction * lambda), (closing, direction * (1.0 - lambda))],
+                terms: [
+                    (n + closing, direction * lambda),
+                    (closing, direction * (1.0 - lambda)),
+                ],
                 n_terms: 2,
                 bounded: true,
                 group: None,
@@ -155,7 +172,11 @@ pub fn impact_model(
         });
         let mut rhs = vec![0.0; m];
         for (r, o) in rhs.iter_mut().enumerate() {
-            *o = mass[r * m..(r + 1) * m].iter().zip(&v).map(|(a, b)| a * b).sum();
+            *o = mass[r * m..(r + 1) * m]
+                .iter()
+                .zip(&v)
+                .map(|(a, b)| a * b)
+                .sum();
         }
         let problem = ConeProblem::new(gens, mass, m, &rhs, options.tolerance)?;
         let sol = cone::solve(&problem, options)?;
@@ -175,7 +196,11 @@ pub fn impact_model(
         report.runner_up = 0.5 * sol.runner_up;
         report.impacts_applied = step;
         if sol.y_hat[impacting] > 0.0 {
-            impacting_status = if lambda_end == 1.0 { Status::OpenLeft } else { Status::OpenRight };
+            impacting_status = if lambda_end == 1.0 {
+                Status::OpenLeft
+            } else {
+                Status::OpenRight
+            };
         } else {
             impacting_status = Status::Closed;
             break;
@@ -213,7 +238,11 @@ mod tests {
 
     fn printed(value: f64, printed: f64, decimals: i32) {
         let s = 10f64.powi(decimals);
-        assert_eq!((value * s).round() / s, printed, "{value} does not print as {printed}");
+        assert_eq!(
+            (value * s).round() / s,
+            printed,
+            "{value} does not print as {printed}"
+        );
     }
 
     /// Thesis Eq. 11 (with the closing DOF's column, SPEC misprint 1): both interfaces open
@@ -228,7 +257,11 @@ mod tests {
             printed(v[0] + v[1], -0.7044, 4);
             assert_eq!(v[2], 0.0);
             assert_eq!(v[3], 0.0);
-            printed(100.0 * (1.0 - rep.kinetic_after / rep.kinetic_before), 25.6, 1);
+            printed(
+                100.0 * (1.0 - rep.kinetic_after / rep.kinetic_before),
+                25.6,
+                1,
+            );
         }
     }
 
@@ -242,7 +275,11 @@ mod tests {
             printed(v[0], -0.0539, 4);
             printed(v[1], -0.7983, 4);
             printed(-(v[0] + v[1]), 0.8522, 4);
-            printed(100.0 * (1.0 - rep.kinetic_after / rep.kinetic_before), 13.9, 1);
+            printed(
+                100.0 * (1.0 - rep.kinetic_after / rep.kinetic_before),
+                13.9,
+                1,
+            );
             assert_eq!(rep.impacts_applied, 2);
         }
     }
@@ -262,7 +299,14 @@ mod tests {
         let mut v = case.velocity.clone();
         v[3] = 1.0; // moving away from closure
         let before = (st.clone(), v.clone());
-        let e = impact_model(&case.mass, &mut st, &mut v, case.closing, &ModelOptions::default()).unwrap_err();
+        let e = impact_model(
+            &case.mass,
+            &mut st,
+            &mut v,
+            case.closing,
+            &ModelOptions::default(),
+        )
+        .unwrap_err();
         assert_eq!(e.kind, ErrorKind::InconsistentState);
         assert_eq!((st, v), before);
     }

@@ -60,7 +60,10 @@ pub fn opening_model(
     if acceleration.len() != m {
         return Err(RockingError::new(
             ErrorKind::InvalidSize,
-            format!("acceleration has {} entries, expected 2n = {m}", acceleration.len()),
+            format!(
+                "acceleration has {} entries, expected 2n = {m}",
+                acceleration.len()
+            ),
         ));
     }
     let problem = ConeProblem::new(generators(statuses), mass, m, load, options.tolerance)?;
@@ -126,7 +129,9 @@ pub fn check_configuration(
     let n = statuses.len();
     let m = 2 * n;
     let problem = ConeProblem::new(generators(statuses), mass, m, load, tolerance)?;
-    let free: Vec<usize> = (0..problem.p()).filter(|&i| !problem.gens[i].bounded).collect();
+    let free: Vec<usize> = (0..problem.p())
+        .filter(|&i| !problem.gens[i].bounded)
+        .collect();
     let mut y_hat = vec![0.0; problem.p()];
     if !free.is_empty() {
         let (mut work, mut x) = (Vec::new(), Vec::new());
@@ -145,7 +150,12 @@ pub fn check_configuration(
     for (r, o) in reactions.iter_mut().enumerate() {
         let k = r % n;
         if statuses[k].dof(k, n).is_none() {
-            *o = mass[r * m..(r + 1) * m].iter().zip(&a).map(|(x, y)| x * y).sum::<f64>() - load[r];
+            *o = mass[r * m..(r + 1) * m]
+                .iter()
+                .zip(&a)
+                .map(|(x, y)| x * y)
+                .sum::<f64>()
+                - load[r];
         }
     }
     let p = problem.p();
@@ -154,8 +164,14 @@ pub fn check_configuration(
         if !gen.bounded {
             continue;
         }
-        let w = problem.b[j] - free.iter().map(|&s| problem.a[j * p + s] * y_hat[s]).sum::<f64>();
-        let k = gen.group.expect("bounded generators of the opening model are corners");
+        let w = problem.b[j]
+            - free
+                .iter()
+                .map(|&s| problem.a[j * p + s] * y_hat[s])
+                .sum::<f64>();
+        let k = gen
+            .group
+            .expect("bounded generators of the opening model are corners");
         if w > problem.threshold && must_open.last() != Some(&k) {
             must_open.push(k);
         }
@@ -206,7 +222,9 @@ mod tests {
         let rep = opening_model(&case.mass, &q, &mut st, &mut a, &ModelOptions::default()).unwrap();
         assert!(!rep.changed);
         assert_eq!(a, vec![0.0; 4]);
-        assert!(check_configuration(&case.mass, &q, &st, 1e-12).unwrap().holds());
+        assert!(check_configuration(&case.mass, &q, &st, 1e-12)
+            .unwrap()
+            .holds());
     }
 
     #[test]

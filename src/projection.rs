@@ -24,7 +24,11 @@ struct Workspace {
 
 /// Solves the relaxed problem with the generators in `forbidden` fixed at zero. Returns the
 /// scaled coefficients and the objective `−½ b̂ᵀŷ`.
-fn relaxed(problem: &ConeProblem, forbidden: &[bool], ws: &mut Workspace) -> Result<(Vec<f64>, f64, f64), RockingError> {
+fn relaxed(
+    problem: &ConeProblem,
+    forbidden: &[bool],
+    ws: &mut Workspace,
+) -> Result<(Vec<f64>, f64, f64), RockingError> {
     let p = problem.p();
     ws.set.clear();
     ws.in_set.clear();
@@ -207,7 +211,8 @@ pub(crate) fn solve(problem: &ConeProblem) -> Result<ConeSolution, RockingError>
             }
         }
     }
-    let (f, y_hat, condition) = best.expect("the branch that keeps every group closed is admissible");
+    let (f, y_hat, condition) =
+        best.expect("the branch that keeps every group closed is admissible");
     let criterion = -2.0 * f;
     let tie = !runner_up.is_nan() && runner_up >= criterion * (1.0 - TIE_GAP);
     Ok(ConeSolution {

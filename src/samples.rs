@@ -6,8 +6,11 @@ use crate::configuration::Status;
 
 /// Two granite blocks 0.1 × 0.3 m, 15 kg each (thesis 3.2.3, Eq. 10).
 pub fn two_granite_column() -> Column {
-    Column::new(vec![Block::rectangle(0.1, 0.3, 15.0), Block::rectangle(0.1, 0.3, 15.0)])
-        .expect("valid blocks")
+    Column::new(vec![
+        Block::rectangle(0.1, 0.3, 15.0),
+        Block::rectangle(0.1, 0.3, 15.0),
+    ])
+    .expect("valid blocks")
 }
 
 /// An impact problem: mass matrix, configuration and velocities before, closing interface.
@@ -59,7 +62,11 @@ pub fn two_block_top_push() -> OpeningCase {
     let top = [0.0, 0.6];
     for (a, q) in load.iter_mut().enumerate() {
         let k = a % 2;
-        let p = if a < 2 { pose.right_pivots[k] } else { pose.left_pivots[k] };
+        let p = if a < 2 {
+            pose.right_pivots[k]
+        } else {
+            pose.left_pivots[k]
+        };
         // Generalised force of a horizontal force F at `top`: −(r − P)_y F.
         *q += -(top[1] - p[1]) * force;
     }
