@@ -45,9 +45,9 @@ use crate::error::RockingError;
 
 /// A horizontal ground acceleration history.
 pub trait GroundMotion {
-    /// Ground acceleration at time `t` [m/s², +x = right].
+    /// Ground acceleration at time `t` (m/s², +x = right).
     fn acceleration(&self, t: f64) -> f64;
-    /// Time after which the motion is zero (or ends) [s].
+    /// Time after which the motion is zero (or ends) (s).
     fn end_time(&self) -> f64;
 }
 
@@ -140,9 +140,9 @@ impl Recording {
 /// Options of a simulation. See [`SimulationOptions::default`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct SimulationOptions {
-    /// Time step [s].
+    /// Time step (s).
     pub dt: f64,
-    /// Simulated duration [s].
+    /// Simulated duration (s).
     pub duration: f64,
     /// Integration method.
     pub integrator: Integrator,
@@ -152,7 +152,7 @@ pub struct SimulationOptions {
     pub model: ModelOptions,
     /// Friction coefficient μ (`f64::INFINITY` disables the sliding check).
     pub friction: f64,
-    /// Acceleration of gravity [m/s²].
+    /// Acceleration of gravity (m/s²).
     pub gravity: f64,
     /// Add the velocity terms of the exact Lagrangian equations (`false` = thesis Eq. 6).
     pub exact_velocity_terms: bool,
@@ -163,7 +163,7 @@ pub struct SimulationOptions {
     pub max_events_per_second: f64,
     /// What to keep.
     pub record: Recording,
-    /// Initial angles per interface [rad], released at rest: negative = about the right corner
+    /// Initial angles per interface (rad), released at rest: negative = about the right corner
     /// (`phĭ`), positive = about the left corner (`phî`), zero = closed. `None`: straight.
     pub initial_angles: Option<Vec<f64>>,
     /// Settling: after an impact, the closing interface is closed for good (its DOF removed by a
@@ -171,7 +171,7 @@ pub struct SimulationOptions {
     /// smallest potential energy that tips a part of the column statically.
     pub settle_energy_fraction: f64,
     /// Settling: ... or when the time since the previous impact at the same interface is below
-    /// this [s]. `None`: four time steps.
+    /// this (s). `None`: four time steps.
     pub settle_interval: Option<f64>,
 }
 
@@ -216,15 +216,15 @@ pub enum EventKind {
 /// One event of a simulation.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Event {
-    /// Time [s].
+    /// Time (s).
     pub t: f64,
     /// Kind.
     pub kind: EventKind,
     /// The interface concerned (impact: the closing one; opening: the lowest newly opened one).
     pub interface: Option<usize>,
-    /// Kinetic energy before [J].
+    /// Kinetic energy before (J).
     pub kinetic_before: f64,
-    /// Kinetic energy after [J].
+    /// Kinetic energy after (J).
     pub kinetic_after: f64,
     /// Configuration before.
     pub statuses_before: Vec<Status>,
@@ -269,13 +269,13 @@ pub enum StopReason {
 pub struct History {
     /// Number of interfaces `n`.
     pub n_interfaces: usize,
-    /// Times [s].
+    /// Times (s).
     pub t: Vec<f64>,
-    /// DOF angles, `2n` per sample [rad].
+    /// DOF angles, `2n` per sample (rad).
     pub phi: Vec<f64>,
-    /// DOF rates, `2n` per sample [rad/s].
+    /// DOF rates, `2n` per sample (rad/s).
     pub rates: Vec<f64>,
-    /// Absolute block rotations, `n` per sample [rad].
+    /// Absolute block rotations, `n` per sample (rad).
     pub block_angles: Vec<f64>,
     /// Interface statuses, `n` per sample.
     pub statuses: Vec<Status>,
@@ -305,7 +305,7 @@ impl History {
     }
 }
 
-/// Energy bookkeeping [J]. Invariant: `ground_work − dissipated ≈ kinetic_end + potential_change`
+/// Energy bookkeeping (J). Invariant: `ground_work − dissipated ≈ kinetic_end + potential_change`
 /// (kinetic energy at the start is zero: the column starts at rest).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct EnergyBalance {
@@ -331,7 +331,7 @@ impl EnergyBalance {
 pub struct Outcome {
     /// Why it stopped.
     pub stop_reason: StopReason,
-    /// Time reached [s].
+    /// Time reached (s).
     pub t_end: f64,
     /// Stopped by overturning (static tipping, or fallen with `continue_until_fallen`).
     pub overturned: bool,
@@ -341,7 +341,7 @@ pub struct Outcome {
     pub events: Vec<Event>,
     /// Kept states.
     pub history: Option<History>,
-    /// Largest absolute rotation of each block [rad].
+    /// Largest absolute rotation of each block (rad).
     pub peak_block_rotation: Vec<f64>,
     /// Energy bookkeeping.
     pub energy: EnergyBalance,
