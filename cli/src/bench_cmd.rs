@@ -390,7 +390,7 @@ struct PeerRow {
 fn observed_order(points: &[(f64, f64)], floor: f64) -> Option<f64> {
     let mut pts: Vec<(f64, f64)> = Vec::new();
     for p in points {
-        let ok = p.1.is_finite() && p.1 > floor && pts.last().map_or(true, |l| p.1.ln() < l.1);
+        let ok = p.1.is_finite() && p.1 > floor && pts.last().is_none_or(|l| p.1.ln() < l.1);
         if !ok {
             break;
         }
@@ -419,7 +419,7 @@ fn time_at_error(points: &[(f64, f64)], err: f64) -> Option<(f64, bool)> {
     // Pareto front: time ascending, error strictly descending.
     let mut front: Vec<(f64, f64)> = Vec::new();
     for p in pts {
-        if front.last().map_or(true, |l| p.1 < l.1) {
+        if front.last().is_none_or(|l| p.1 < l.1) {
             front.push(p);
         }
     }
@@ -443,6 +443,14 @@ fn fmt_err(v: f64) -> String {
         "sequence differs".into()
     } else {
         format!("{v:.2e}")
+    }
+}
+
+fn fmt_ratio(r: f64) -> String {
+    if r < 10.0 {
+        format!("{r:.1}")
+    } else {
+        format!("{r:.0}")
     }
 }
 
@@ -615,7 +623,10 @@ fn chart(r: &SceneResult) -> Chart {
         });
     }
     Chart {
-        title: format!("{}: error in impact times against run time", r.scene.title),
+        title: format!(
+            "Scene ({}): error in impact times against run time",
+            r.scene.key
+        ),
         x_label: "wall time (s), best of repetitions".into(),
         y_label: "largest error in the first impact times (s)".into(),
         x_log: true,
@@ -930,7 +941,7 @@ fn peer_section(s: &mut String, r: &SceneResult) {
                     .map(|x| (x.wall, x.err.impact))
                     .collect();
                 if let Some((t, bound)) = time_at_error(&pts, p.err.impact) {
-                    if best.as_ref().map_or(true, |b| t < b.0) {
+                    if best.as_ref().is_none_or(|b| t < b.0) {
                         best = Some((t, bound, format!("{iname}, {lname}")));
                     }
                 }
@@ -942,7 +953,7 @@ fn peer_section(s: &mut String, r: &SceneResult) {
                 ratios.push(ratio);
                 (
                     format!("{name}: {}", fmt_time(*t)),
-                    format!("{}{ratio:.0}×", if *bound { "≥ " } else { "" }),
+                    format!("{}{}×", if *bound { "≥ " } else { "" }, fmt_ratio(ratio)),
                 )
             }
             _ => ("below every Rust run's error".into(), "—".into()),
@@ -972,11 +983,11 @@ fn peer_section(s: &mut String, r: &SceneResult) {
         ratios.sort_by(f64::total_cmp);
         let _ = writeln!(
             s,
-            "\nSpeed ratio over the {} scipy runs with a Rust run as accurate: smallest {:.0}×, median {:.0}×, largest {:.0}×.",
+            "\nSpeed ratio over the {} scipy runs with a Rust run as accurate (lower bounds \"≥\" counted at their value): smallest {}×, median {}×, largest {}×.",
             ratios.len(),
-            ratios[0],
-            ratios[ratios.len() / 2],
-            ratios[ratios.len() - 1]
+            fmt_ratio(ratios[0]),
+            fmt_ratio(ratios[ratios.len() / 2]),
+            fmt_ratio(ratios[ratios.len() - 1])
         );
     }
 }
