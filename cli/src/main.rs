@@ -6,6 +6,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
+mod bench_cmd;
 mod output;
 mod plot;
 mod scene;
@@ -38,6 +39,31 @@ enum Command {
         #[arg(long)]
         plot: Option<PathBuf>,
     },
+    /// Benchmarks of the driver.
+    Bench {
+        #[command(subcommand)]
+        bench: Bench,
+    },
+}
+
+#[derive(Subcommand)]
+enum Bench {
+    /// Error against time step and run time for each integrator and event locator
+    /// (writes a Markdown report and log-log charts).
+    Accuracy {
+        /// The Markdown report.
+        #[arg(long, default_value = "docs/accuracy.md")]
+        out: PathBuf,
+        /// Error against run time (.svg or .png); scenes (b), (c) go to FILE_b, FILE_c.
+        #[arg(long)]
+        plot: Option<PathBuf>,
+        /// A reduced grid (a few seconds).
+        #[arg(long)]
+        quick: bool,
+        /// Results of the scipy peer (bench/peer/results.json) to compare with.
+        #[arg(long)]
+        peer: Option<PathBuf>,
+    },
 }
 
 fn main() -> ExitCode {
@@ -45,6 +71,20 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Thesis => return thesis::run(),
         Command::Simulate { scene, out, plot } => simulate::run(&scene, &out, plot.as_deref()),
+        Command::Bench {
+            bench:
+                Bench::Accuracy {
+                    out,
+                    plot,
+                    quick,
+                    peer,
+                },
+        } => bench_cmd::run(&bench_cmd::AccuracyArgs {
+            out,
+            plot,
+            quick,
+            peer,
+        }),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

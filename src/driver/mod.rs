@@ -33,6 +33,7 @@ mod dynamics;
 mod engine;
 mod events;
 mod integrator;
+pub mod reference;
 #[cfg(test)]
 mod tests;
 

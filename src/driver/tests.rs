@@ -21,67 +21,7 @@ fn free(angle: f64, duration: f64) -> SimulationOptions {
     }
 }
 
-/// Exact single-block quantities: `I_P θ̈ = −m g R sin(δ − θ)` for `0 < θ < δ` (θ = |φ|).
-struct Exact {
-    delta: f64,
-    /// `m g R / I_P` (= p²).
-    p2: f64,
-}
-
-impl Exact {
-    fn new(b: f64, h: f64) -> Exact {
-        let r = (b * b + h * h).sqrt();
-        // I_P = m R² + m ((2b)² + (2h)²) / 12 = 4/3 m R².
-        Exact {
-            delta: (b / h).atan(),
-            p2: G * r / (4.0 / 3.0 * r * r),
-        }
-    }
-
-    /// Time to fall from rest at `theta0` to `θ = 0` (a quarter of the rocking period):
-    /// `∫ dθ / ω`, `ω² = 2 p² (cos(δ − θ0) − cos(δ − θ))`, by the midpoint rule after
-    /// `θ = θ0 (1 − s²)` (which removes the square-root singularity at θ0).
-    fn quarter(&self, theta0: f64) -> f64 {
-        // Midpoint rule (error ∝ 1/N² for this smooth integrand), Richardson-extrapolated.
-        (4.0 * self.midpoint(theta0, 40_000) - self.midpoint(theta0, 20_000)) / 3.0
-    }
-
-    fn midpoint(&self, theta0: f64, n: usize) -> f64 {
-        let mut sum = 0.0;
-        for i in 0..n {
-            let s = (i as f64 + 0.5) / n as f64;
-            let theta = theta0 * (1.0 - s * s);
-            let w2 = 2.0 * self.p2 * ((self.delta - theta0).cos() - (self.delta - theta).cos());
-            sum += 2.0 * theta0 * s / w2.sqrt();
-        }
-        sum / n as f64
-    }
-
-    /// Amplitude reached from `θ = 0` with rate `omega`.
-    fn amplitude(&self, omega: f64) -> f64 {
-        let c = self.delta.cos() + 0.5 * omega * omega / self.p2;
-        self.delta - c.acos()
-    }
-
-    /// Rate at `θ = 0` after falling from `theta0`.
-    fn rate_at_zero(&self, theta0: f64) -> f64 {
-        (2.0 * self.p2 * ((self.delta - theta0).cos() - self.delta.cos())).sqrt()
-    }
-
-    /// Impact times with a constant velocity ratio `mu`.
-    fn impact_times(&self, theta0: f64, mu: f64, count: usize) -> Vec<f64> {
-        let mut t = self.quarter(theta0);
-        let mut out = vec![t];
-        let mut omega = self.rate_at_zero(theta0);
-        for _ in 1..count {
-            omega *= mu;
-            let a = self.amplitude(omega);
-            t += 2.0 * self.quarter(a);
-            out.push(t);
-        }
-        out
-    }
-}
+use super::reference::SingleBlockExact;
 
 /// Housner's velocity ratio (thesis Eq. 1, half dimensions h, b).
 fn housner(b: f64, h: f64) -> f64 {
@@ -103,7 +43,7 @@ fn impacts(out: &Outcome) -> Vec<&Event> {
 #[test]
 fn single_block_free_rocking_matches_the_exact_solution() {
     let (b, h) = (0.25, 1.0);
-    let exact = Exact::new(b, h);
+    let exact = SingleBlockExact::new(b, h, G);
     let theta0 = 0.6 * exact.delta;
     for (n_imp, mu) in [(1, housner(b, h)), (2, two_impacts(b, h))] {
         for locator in [EventLocator::Linear, EventLocator::Hermite] {
@@ -139,7 +79,7 @@ fn housner_ratio_for_table1_slenderness() {
     // Table 1 rows h/b = 2, 3, 4: 51.0 %, 27.8 %, 16.9 % energy loss at the first impact.
     for (hb, loss) in [(2.0, 51.0), (3.0, 27.8), (4.0, 16.9)] {
         let (b, h) = (0.2, 0.2 * hb);
-        let exact = Exact::new(b, h);
+        let exact = SingleBlockExact::new(b, h, G);
         let out = simulate(&block(b, h), &NoMotion, &free(0.5 * exact.delta, 3.0), None).unwrap();
         let e = impacts(&out)[0];
         // 27.75 % prints as 27.8 in the table; compare to the printed half-digit.
@@ -151,7 +91,7 @@ fn housner_ratio_for_table1_slenderness() {
 #[test]
 fn free_rocking_settles_in_finite_time() {
     let (b, h) = (0.25, 1.0);
-    let exact = Exact::new(b, h);
+    let exact = SingleBlockExact::new(b, h, G);
     let out = simulate(
         &block(b, h),
         &NoMotion,
@@ -180,7 +120,7 @@ fn free_rocking_settles_in_finite_time() {
 #[test]
 fn event_cap_stops_a_zeno_sequence() {
     let (b, h) = (0.25, 1.0);
-    let exact = Exact::new(b, h);
+    let exact = SingleBlockExact::new(b, h, G);
     let mut opts = free(-0.6 * exact.delta, 20.0);
     opts.settle_energy_fraction = 0.0;
     opts.settle_interval = Some(0.0);
@@ -612,7 +552,7 @@ fn energy_balance() {
 #[test]
 fn integrator_convergence_order() {
     let (b, h) = (0.25, 1.0);
-    let exact = Exact::new(b, h);
+    let exact = SingleBlockExact::new(b, h, G);
     let theta0 = 0.6 * exact.delta;
     let t_exact = exact.quarter(theta0);
     for (method, locator, lo, hi) in [
