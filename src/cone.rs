@@ -299,6 +299,31 @@ impl ConeProblem {
         v > self.threshold && v * self.scale[i] > self.tolerance * largest_rate
     }
 
+    /// Whether a face solution is stationary in its own cone (the KKT condition): no bounded
+    /// generator at zero whose group is not already used by the face has a gradient
+    /// `b̂_j − (Âŷ)_j` above the threshold. This is the first-order form of "nothing more
+    /// opens": just past an opening event the reaction is tiny and the kinetic-energy criterion
+    /// of the faces differs only in the square of it (below round-off), while this test still
+    /// sees it — the same test as [`crate::check_configuration`] and the projection solver.
+    pub fn stationary(&self, set: &[usize], x: &[f64]) -> bool {
+        let p = self.p();
+        let in_set = |j: usize| set.contains(&j);
+        (0..p).all(|j| {
+            let g = &self.gens[j];
+            if !g.bounded || in_set(j) {
+                return true;
+            }
+            if let Some(k) = g.group {
+                if set.iter().any(|&s| self.gens[s].group == Some(k)) {
+                    return true;
+                }
+            }
+            let row = &self.a[j * p..(j + 1) * p];
+            let grad = self.b[j] - set.iter().zip(x).map(|(&s, v)| row[s] * v).sum::<f64>();
+            grad <= self.threshold
+        })
+    }
+
     /// Largest unscaled coefficient `max |s_i ŷ_i|` over a face.
     pub fn largest_rate(&self, set: &[usize], x: &[f64]) -> f64 {
         set.iter()

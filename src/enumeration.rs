@@ -22,8 +22,10 @@ pub(crate) fn solve(problem: &ConeProblem) -> Result<ConeSolution, RockingError>
     let mut set: Vec<usize> = Vec::with_capacity(p);
     let mut work = Vec::with_capacity(p * p);
     let mut x = Vec::with_capacity(p);
-    let mut best: Option<(f64, Vec<usize>, Vec<f64>, f64)> = None;
-    let mut runner_up = f64::NAN;
+    // Two rankings: faces that are also stationary in their cone (the KKT condition), and all
+    // sign-admissible faces (the thesis's rule). In exact arithmetic the best of both is the same
+    // face; near an event, where criteria differ below round-off, the stationary one is right.
+    let mut best = [Best::default(), Best::default()];
     let mut examined = 0u64;
     let mut admissible = 0u64;
     loop {
@@ -53,27 +55,26 @@ pub(crate) fn solve(problem: &ConeProblem) -> Result<ConeSolution, RockingError>
         if ok {
             admissible += 1;
             let c = problem.criterion(&set, &x);
-            match &best {
-                Some((bc, ..)) if c <= *bc * (1.0 + 1e-14) => {
-                    if runner_up.is_nan() || c > runner_up {
-                        runner_up = c;
-                    }
-                }
-                _ => {
-                    if let Some((bc, ..)) = &best {
-                        runner_up = *bc;
-                    }
-                    let cond = crate::cholesky::condition_estimate(&work, set.len());
-                    best = Some((c, set.clone(), x.clone(), cond));
-                }
+            let cond = crate::cholesky::condition_estimate(&work, set.len());
+            best[1].offer(c, &set, &x, cond);
+            if problem.stationary(&set, &x) {
+                best[0].offer(c, &set, &x, cond);
             }
         }
         // Next configuration.
         let mut u = 0;
         loop {
             if u == digits.len() {
-                let (criterion, set, x, condition) =
-                    best.expect("the all-closed configuration is always admissible");
+                let [stationary, any] = best;
+                let chosen = if stationary.face.is_some() {
+                    stationary
+                } else {
+                    any
+                };
+                let runner_up = chosen.runner_up;
+                let (criterion, set, x, condition) = chosen
+                    .face
+                    .expect("the all-closed configuration is always admissible");
                 let mut y_hat = vec![0.0; p];
                 for (&i, &v) in set.iter().zip(&x) {
                     y_hat[i] = v;
@@ -96,6 +97,30 @@ pub(crate) fn solve(problem: &ConeProblem) -> Result<ConeSolution, RockingError>
             }
             digits[u] = 0;
             u += 1;
+        }
+    }
+}
+
+/// The best face seen so far and the runner-up's criterion.
+#[derive(Default)]
+struct Best {
+    face: Option<(f64, Vec<usize>, Vec<f64>, f64)>,
+    runner_up: f64,
+}
+
+impl Best {
+    /// Keeps the face if its criterion is higher (first found wins ties, by a relative 1e-14).
+    fn offer(&mut self, c: f64, set: &[usize], x: &[f64], cond: f64) {
+        match &self.face {
+            Some((bc, ..)) if c <= *bc * (1.0 + 1e-14) => {
+                if self.runner_up.is_nan() || c > self.runner_up {
+                    self.runner_up = c;
+                }
+            }
+            _ => {
+                self.runner_up = self.face.as_ref().map_or(f64::NAN, |f| f.0);
+                self.face = Some((c, set.to_vec(), x.to_vec(), cond));
+            }
         }
     }
 }
