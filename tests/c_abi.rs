@@ -1,8 +1,26 @@
 //! The C programs in `c_examples/` compiled (with the `cc` crate's compiler detection) against
-//! `include/rocking.h` alone and the cdylib, then run: each must exit 0.
+//! `include/rocking.h` alone and the cdylib, then run: each must exit 0. Every `*.c` there is
+//! found by listing the directory, built twice (`-std=c99 -Wall -Wextra -Werror -pedantic`, then
+//! the same under AddressSanitizer and UndefinedBehaviorSanitizer), and the header is compiled
+//! once more from a C++ translation unit.
+//!
+//! Sanitizers with a Rust cdylib: only the C executable is instrumented. `-fsanitize=address`
+//! makes the compiler link the ASan runtime into the executable (gcc: `libasan.so` as its first
+//! `DT_NEEDED`, so it is first in the initial library list and `verify_asan_link_order` is
+//! satisfied; clang: the static runtime), hence no `LD_PRELOAD` — that is needed only when the
+//! executable is not instrumented, e.g. Python loading the library through ctypes. The Rust code
+//! allocates through `malloc`/`free`, which ASan intercepts process-wide, so LeakSanitizer sees
+//! the library's allocations too and stays on (`detect_leaks=1`, the Linux default; it reports
+//! nothing: no call leaks). LeakSanitizer needs ptrace-free execution: under strace/gdb set
+//! `ASAN_OPTIONS=detect_leaks=0`. UBSan only prints and carries on by default, so
+//! `-fno-sanitize-recover=all` turns every finding into a non-zero exit. Valgrind runs the same
+//! examples from `.ci/run` (it cannot run an ASan binary, hence the separate plain build).
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+static BUILDS: AtomicUsize = AtomicUsize::new(0);
 
 /// `target/<profile>`, where cargo put `librocking.so` for this test run.
 fn profile_dir() -> PathBuf {
@@ -26,6 +44,41 @@ fn compiler(cpp: bool) -> cc::Tool {
         .get_compiler()
 }
 
+/// Compiler flags of the sanitizer build.
+const SANITIZE: &[&str] = &[
+    "-fsanitize=address,undefined",
+    "-fno-sanitize-recover=all",
+    "-fno-omit-frame-pointer",
+    "-g",
+];
+
+/// The C programs of `c_examples/` (every `*.c`), sorted.
+fn c_examples() -> Vec<String> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("c_examples");
+    let mut out: Vec<String> = std::fs::read_dir(&dir)
+        .expect("c_examples/")
+        .filter_map(|e| e.ok())
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| n.ends_with(".c"))
+        .map(|n| format!("c_examples/{n}"))
+        .collect();
+    out.sort();
+    assert!(
+        out.len() >= 2,
+        "expected minimal.c and opensees_style_harness.c, found {out:?}"
+    );
+    out
+}
+
+/// What each example prints when all its checks pass.
+fn success_marker(source: &str) -> &'static str {
+    match source {
+        "c_examples/minimal.c" => "all thesis values reproduced",
+        "c_examples/opensees_style_harness.c" => "harness: all self-checks passed",
+        _ => "",
+    }
+}
+
 /// Compiles `source` into an executable with `extra` flags, links the cdylib, runs it from
 /// `c_examples/` and returns its stdout.
 pub fn build_and_run(source: &str, extra: &[&str], cpp: bool) -> String {
@@ -39,7 +92,12 @@ pub fn build_and_run(source: &str, extra: &[&str], cpp: bool) -> String {
     let out_dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR"));
     let exe = out_dir
         .join(Path::new(source).file_stem().unwrap())
-        .with_extension(if extra.is_empty() { "bin" } else { "san.bin" });
+        .with_extension(format!(
+            "{}{}.bin",
+            if extra.is_empty() { "" } else { "san." },
+            // tests run in parallel and may build the same source: one executable each
+            BUILDS.fetch_add(1, Ordering::Relaxed)
+        ));
     let tool = compiler(cpp);
     let mut cmd = tool.to_command();
     cmd.arg(if cpp { "-std=c++11" } else { "-std=c99" })
@@ -60,6 +118,7 @@ pub fn build_and_run(source: &str, extra: &[&str], cpp: bool) -> String {
     );
     let run = Command::new(&exe)
         .current_dir(root.join("c_examples"))
+        .env("UBSAN_OPTIONS", "print_stacktrace=1")
         .output()
         .expect("run the example");
     let stdout = String::from_utf8_lossy(&run.stdout).into_owned();
@@ -79,7 +138,40 @@ fn minimal_c_example_reproduces_the_thesis() {
 }
 
 #[test]
+fn every_c_example_builds_warning_free_and_passes() {
+    for source in c_examples() {
+        let out = build_and_run(&source, &[], false);
+        assert!(out.contains(success_marker(&source)), "{source}:\n{out}");
+    }
+}
+
+#[test]
+fn every_c_example_is_clean_under_asan_and_ubsan() {
+    for source in c_examples() {
+        let out = build_and_run(&source, SANITIZE, false);
+        assert!(out.contains(success_marker(&source)), "{source}:\n{out}");
+    }
+}
+
+/// The harness prints one RESULT line per scene; the self-checks inside it assert the exact
+/// single-block answers (Housner's ratio, the energy-integral times, the opening time).
+#[test]
+fn harness_prints_machine_readable_results() {
+    let out = build_and_run("c_examples/opensees_style_harness.c", &[], false);
+    for scene in ["a", "b", "c", "d"] {
+        assert!(
+            out.lines()
+                .any(|l| l.starts_with(&format!("RESULT scene={scene} "))),
+            "no RESULT line for scene {scene}:\n{out}"
+        );
+    }
+    assert!(!out.contains(" FAIL"), "{out}");
+}
+
+#[test]
 fn header_is_cxx_clean() {
     let out = build_and_run("c_examples/cxx_header_check.cpp", &[], true);
+    assert!(out.contains("ok"), "{out}");
+    let out = build_and_run("c_examples/cxx_header_check.cpp", SANITIZE, true);
     assert!(out.contains("ok"), "{out}");
 }
