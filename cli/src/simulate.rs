@@ -1,0 +1,253 @@
+//! `rocking simulate SCENE.json --out DIR [--plot FILE.svg|png]`: a time history of a scene.
+//!
+//! Writes `DIR/history.csv` (t, interface angles and rates, block rotations, statuses),
+//! `DIR/events.jsonl` (one JSON object per event) and `DIR/summary.json`. Files are written only
+//! after the simulation succeeded, each atomically.
+
+use std::fmt::Write as _;
+use std::path::Path;
+use std::time::Instant;
+
+use rocking::driver::{self, Event, EventKind, FnMotion, Outcome, StopReason};
+use rocking::{ModelReport, Status};
+use serde_json::{json, Value};
+
+use crate::output::{progress_bar, write_atomic};
+use crate::plot::{Chart, Marker, Series, Style, COLORS};
+use crate::scene::{self, Scene};
+
+/// Runs the command.
+pub fn run(scene_path: &Path, out: &Path, plot: Option<&Path>) -> Result<(), String> {
+    if let Some(p) = plot {
+        match p.extension().and_then(|e| e.to_str()) {
+            Some("svg") | Some("png") => {}
+            _ => {
+                return Err(format!(
+                    "--plot {}: the file must end in .svg or .png",
+                    p.display()
+                ))
+            }
+        }
+    }
+    let scene = scene::load(scene_path).map_err(|e| e.to_string())?;
+    let excitation = &scene.excitation;
+    let motion = FnMotion(|t| excitation.acceleration(t), excitation.end_time());
+    let bar = progress_bar(1000, "simulating");
+    let mut report = |fraction: f64| bar.set_position((fraction * 1000.0) as u64);
+    let started = Instant::now();
+    let outcome = driver::simulate(&scene.column, &motion, &scene.options, Some(&mut report))
+        .map_err(|e| e.to_string())?;
+    let wall = started.elapsed().as_secs_f64();
+    bar.finish_and_clear();
+
+    if scene.output.history {
+        if let Some(h) = &outcome.history {
+            write_atomic(&out.join("history.csv"), history_csv(h).as_bytes())?;
+        }
+    }
+    if scene.output.events {
+        let mut lines = String::new();
+        for e in &outcome.events {
+            lines.push_str(&event_json(e).to_string());
+            lines.push('\n');
+        }
+        write_atomic(&out.join("events.jsonl"), lines.as_bytes())?;
+    }
+    let summary = summary_json(&scene, scene_path, &outcome, wall);
+    let text = serde_json::to_string_pretty(&summary).map_err(|e| e.to_string())?;
+    write_atomic(&out.join("summary.json"), format!("{text}\n").as_bytes())?;
+    if let Some(p) = plot {
+        chart(&scene, &outcome)?.write(p)?;
+    }
+    println!(
+        "{}: {} at t = {:.4} s, {} impacts, {} events; peak block rotations {:?} rad ({:.3} s wall) -> {}",
+        scene.title,
+        stop_text(&outcome.stop_reason),
+        outcome.t_end,
+        outcome.impacts,
+        outcome.events.len(),
+        outcome.peak_block_rotation.iter().map(|v| (v * 1e4).round() / 1e4).collect::<Vec<_>>(),
+        wall,
+        out.display()
+    );
+    Ok(())
+}
+
+fn status_codes(s: &[Status]) -> Vec<i8> {
+    s.iter().map(|x| x.as_i8()).collect()
+}
+
+/// The history as CSV: per interface its signed angle and rate (`phĭ + phî`), per block its
+/// absolute rotation, per interface its status.
+pub fn history_csv(h: &driver::History) -> String {
+    let n = h.n_interfaces;
+    let mut s = String::from("t");
+    for k in 0..n {
+        let _ = write!(s, ",angle_{k}");
+    }
+    for k in 0..n {
+        let _ = write!(s, ",rate_{k}");
+    }
+    for k in 0..n {
+        let _ = write!(s, ",block_rotation_{k}");
+    }
+    for k in 0..n {
+        let _ = write!(s, ",status_{k}");
+    }
+    s.push('\n');
+    for i in 0..h.len() {
+        let _ = write!(s, "{}", h.t[i]);
+        let phi = h.phi_at(i);
+        let rates = &h.rates[i * 2 * n..(i + 1) * 2 * n];
+        for k in 0..n {
+            let _ = write!(s, ",{}", phi[k] + phi[n + k]);
+        }
+        for k in 0..n {
+            let _ = write!(s, ",{}", rates[k] + rates[n + k]);
+        }
+        for v in h.block_angles_at(i) {
+            let _ = write!(s, ",{v}");
+        }
+        for st in &h.statuses[i * n..(i + 1) * n] {
+            let _ = write!(s, ",{}", st.as_i8());
+        }
+        s.push('\n');
+    }
+    s
+}
+
+fn kind_name(k: EventKind) -> &'static str {
+    match k {
+        EventKind::Opening => "opening",
+        EventKind::Impact => "impact",
+        EventKind::Settled => "settled",
+        EventKind::Overturned => "overturned",
+        EventKind::Sliding => "sliding",
+        EventKind::Tension => "tension",
+    }
+}
+
+fn report_json(r: &ModelReport) -> Value {
+    json!({
+        "solver": format!("{:?}", r.solver).to_lowercase(),
+        "configurations_examined": r.configurations_examined,
+        "admissible": r.admissible,
+        "changed": r.changed,
+        "tie": r.tie,
+        "impacts_applied": r.impacts_applied,
+        "kinetic_before": r.kinetic_before,
+        "kinetic_after": r.kinetic_after,
+        "runner_up": r.runner_up,
+        "condition_estimate": r.condition_estimate,
+    })
+}
+
+/// One event as a JSON object.
+pub fn event_json(e: &Event) -> Value {
+    json!({
+        "t": e.t,
+        "kind": kind_name(e.kind),
+        "interface": e.interface,
+        "kinetic_before": e.kinetic_before,
+        "kinetic_after": e.kinetic_after,
+        "statuses_before": status_codes(&e.statuses_before),
+        "statuses_after": status_codes(&e.statuses_after),
+        "report": e.report.as_ref().map(report_json),
+    })
+}
+
+fn stop_text(s: &StopReason) -> String {
+    match s {
+        StopReason::Duration => "end of duration".into(),
+        StopReason::Overturned { interface } => format!("overturned at interface {interface}"),
+        StopReason::Fallen { interface } => format!("fallen at interface {interface}"),
+        StopReason::Sliding { interface } => format!("sliding at interface {interface}"),
+        StopReason::Tension { interface } => format!("tension at interface {interface}"),
+        StopReason::TooManyEvents => "too many events (cap reached)".into(),
+    }
+}
+
+fn stop_json(s: &StopReason) -> (&'static str, Option<usize>) {
+    match *s {
+        StopReason::Duration => ("duration", None),
+        StopReason::Overturned { interface } => ("overturned", Some(interface)),
+        StopReason::Fallen { interface } => ("fallen", Some(interface)),
+        StopReason::Sliding { interface } => ("sliding", Some(interface)),
+        StopReason::Tension { interface } => ("tension", Some(interface)),
+        StopReason::TooManyEvents => ("too_many_events", None),
+    }
+}
+
+fn summary_json(scene: &Scene, path: &Path, o: &Outcome, wall: f64) -> Value {
+    let (reason, interface) = stop_json(&o.stop_reason);
+    let mut counts = serde_json::Map::new();
+    for e in &o.events {
+        let c = counts.entry(kind_name(e.kind)).or_insert(json!(0));
+        *c = json!(c.as_u64().unwrap_or(0) + 1);
+    }
+    json!({
+        "scene": path.display().to_string(),
+        "title": scene.title,
+        "excitation": scene.excitation.describe(),
+        "overturned": o.overturned,
+        "t_end": o.t_end,
+        "impacts": o.impacts,
+        "stop_reason": reason,
+        "stop_interface": interface,
+        "peak_block_rotation": o.peak_block_rotation,
+        "statuses_end": status_codes(&o.statuses_end),
+        "events": counts,
+        "energy": {
+            "ground_work": o.energy.ground_work,
+            "dissipated": o.energy.dissipated,
+            "kinetic_end": o.energy.kinetic_end,
+            "potential_change": o.energy.potential_change,
+            "residual": o.energy.residual(),
+        },
+        "dt": scene.options.dt,
+        "wall_time_s": wall,
+    })
+}
+
+fn chart(scene: &Scene, o: &Outcome) -> Result<Chart, String> {
+    let h = o
+        .history
+        .as_ref()
+        .ok_or("--plot needs the history (output.history must be true)")?;
+    let n = h.n_interfaces;
+    let mut chart = Chart {
+        title: format!("{} — {}", scene.title, scene.excitation.describe()),
+        x_label: "t [s]".into(),
+        y_label: "block rotation [rad]".into(),
+        ..Chart::default()
+    };
+    for k in 0..n {
+        chart.series.push(Series {
+            name: format!("block {k}"),
+            points: (0..h.len())
+                .map(|i| (h.t[i], h.block_angles_at(i)[k]))
+                .collect(),
+            style: Style::Line,
+            color: COLORS[k % COLORS.len()],
+        });
+    }
+    for e in &o.events {
+        let color = match e.kind {
+            EventKind::Impact => "#d62728",
+            EventKind::Opening => "#2ca02c",
+            EventKind::Settled => "#7f7f7f",
+            _ => "#000000",
+        };
+        chart.markers.push(Marker {
+            x: e.t,
+            label: format!(
+                "{} {}",
+                kind_name(e.kind),
+                e.interface
+                    .map_or(String::new(), |k| format!("at interface {k}"))
+            ),
+            color,
+        });
+    }
+    Ok(chart)
+}
