@@ -10,20 +10,26 @@ The OpenSees model (2D, 3 DOF per node), per block:
     corner nodes at the contact width; all joined by very stiff elasticBeamColumn elements with a
     Corotational transformation (rigid bodies, exact for large rotations: OpenSees's rigidLink is
     linear in the rotation, which moves a corner by r θ²/2 = 3.5 mm at 0.15 rad);
-  - at every interface, one flatSliderBearing per corner between the corner nodes of the two
-    blocks (or the ground): axial ENT material (compression only: the corner lifts freely),
-    Coulomb friction μ = 2 (no sliding while in contact, no shear once lifted).
+  - at every interface, a zeroLength element per corner with an ENT material in the vertical
+    direction (compression only: the corner lifts freely), and no sliding: the pivot corner is
+    held horizontally (a fix on the ground, an equalDOF between blocks; the Transformation
+    constraint handler), and that tie is moved to the new pivot at every opening and impact.
+    (A flatSliderBearing with Coulomb friction would be the natural contact; Newton does not
+    converge with it here, at the first step after release.)
 Openings are left to OpenSees (a corner's bearing goes slack); at each one the script asks the
 library's opening model on OpenSees's own matrices and checks that it picks the configuration
-OpenSees took. Impacts: when an open interface's rotation comes back to zero (the step is cut to
-land on it), the script
+OpenSees took. Impacts: when the lifted corner of an open interface comes down onto the part below
+(the step is cut to land on the contact), the script
   1. takes OpenSees's mass matrix (GimmeMCK + FullGeneral + printA('-ret'), once: it is lumped
      and constant; only B changes with the geometry),
   2. builds B (equations <- interface DOFs) from the current node positions (coordinates plus
      displacements) and reduces it with rocking_reduce: M~ = B^T M B,
   3. reads the interface rates from OpenSees, calls rocking_impact_model,
-  4. writes v = B v+ into every node of every block with setNodeVel, then ops.domainChange() (else
-     the Newmark integrator keeps its own copy of the velocities and overwrites them).
+  4. writes v = B v+ (and consistent accelerations) into every node of every block with
+     setNodeVel / setNodeAccel, then ops.domainChange() (else the integrator keeps its own copy
+     of the velocities and overwrites them), and moves the no-slip tie to the new pivot.
+The blocks start tilted and at rest with gravity applied statically (the tilt held by an imposed
+rotation), so that the contact springs do not ring from a suddenly applied weight.
 """
 import ctypes
 import math
