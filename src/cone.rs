@@ -185,6 +185,8 @@ pub(crate) struct ConeProblem {
     pub scale: Vec<f64>,
     /// A bounded scaled coefficient is admissible when above this.
     pub threshold: f64,
+    /// Relative tolerance of the options.
+    pub tolerance: f64,
 }
 
 impl ConeProblem {
@@ -260,6 +262,7 @@ impl ConeProblem {
             b,
             scale,
             threshold: tolerance * bmax,
+            tolerance,
         })
     }
 
@@ -285,6 +288,22 @@ impl ConeProblem {
         }
         crate::cholesky::solve(work, k, x);
         true
+    }
+
+    /// Whether the bounded generator `i` with scaled coefficient `v` opens admissibly (SPEC §2–3:
+    /// strictly the admissible way). Two tests, both relative: `ŷ` above the threshold (its
+    /// kinetic-energy weight is not round-off), and its rate `y = s ŷ` above `tolerance` times
+    /// the largest rate `largest_rate` of the same solution (all DOFs are rotations, so rates
+    /// compare directly; a tiny block on a huge one must not open the huge one at 1e-16 rad/s).
+    pub fn admissible(&self, i: usize, v: f64, largest_rate: f64) -> bool {
+        v > self.threshold && v * self.scale[i] > self.tolerance * largest_rate
+    }
+
+    /// Largest unscaled coefficient `max |s_i ŷ_i|` over a face.
+    pub fn largest_rate(&self, set: &[usize], x: &[f64]) -> f64 {
+        set.iter()
+            .zip(x)
+            .fold(0.0_f64, |a, (&i, v)| a.max((v * self.scale[i]).abs()))
     }
 
     /// Criterion `b̂ᵀŷ` of a face solution.

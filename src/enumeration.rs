@@ -45,10 +45,11 @@ pub(crate) fn solve(problem: &ConeProblem) -> Result<ConeSolution, RockingError>
                 "the mass matrix of a configuration is not positive definite",
             ));
         }
+        let largest = problem.largest_rate(&set, &x);
         let ok = set
             .iter()
             .zip(&x)
-            .all(|(&i, &v)| !problem.gens[i].bounded || v > problem.threshold);
+            .all(|(&i, &v)| !problem.gens[i].bounded || problem.admissible(i, v, largest));
         if ok {
             admissible += 1;
             let c = problem.criterion(&set, &x);

@@ -228,10 +228,10 @@ pub(crate) fn solve(problem: &ConeProblem) -> Result<ConeSolution, RockingError>
     })
 }
 
-/// Applies the enumeration's admissibility rule to the optimum: a bounded coefficient must exceed
-/// the threshold, not merely be positive. Coefficients at or below it (openings at round-off
-/// rates, which the enumeration rejects) are set to zero and the face is solved again, until
-/// every remaining one passes. The kinetic energy changes only at round-off level.
+/// Applies the enumeration's admissibility rule ([`ConeProblem::admissible`]) to the optimum: a
+/// bounded coefficient must pass it, not merely be positive. Coefficients that fail (openings at
+/// round-off rates, which the enumeration rejects) are set to zero and the face is solved again,
+/// until every remaining one passes. The kinetic energy changes only at round-off level.
 fn polish(
     problem: &ConeProblem,
     mut y: Vec<f64>,
@@ -239,16 +239,17 @@ fn polish(
     ws: &mut Workspace,
 ) -> Result<(Vec<f64>, f64), RockingError> {
     loop {
-        let weak = (0..problem.p())
-            .any(|i| problem.gens[i].bounded && y[i] != 0.0 && y[i] <= problem.threshold);
-        if !weak {
+        let all: Vec<usize> = (0..problem.p()).collect();
+        let largest = problem.largest_rate(&all, &y);
+        let weak = |i: usize| {
+            problem.gens[i].bounded && y[i] != 0.0 && !problem.admissible(i, y[i], largest)
+        };
+        if !(0..problem.p()).any(weak) {
             return Ok((y, condition));
         }
         ws.set.clear();
         ws.set
-            .extend((0..problem.p()).filter(|&i| {
-                y[i] != 0.0 && (!problem.gens[i].bounded || y[i] > problem.threshold)
-            }));
+            .extend((0..problem.p()).filter(|&i| y[i] != 0.0 && !weak(i)));
         y.iter_mut().for_each(|v| *v = 0.0);
         if ws.set.is_empty() {
             return Ok((y, 1.0));

@@ -261,12 +261,17 @@ impl<'a> Engine<'a> {
             &mut self.mass,
             &mut self.load,
         );
-        let kin_before = kinetic_energy(&self.mass, &self.rates);
         let sigma = self.statuses[k].sign();
         if sigma * self.rates[d] > 0.0 {
-            // Touching zero without moving towards it (a DOF that never really opened).
+            // Touching zero without moving towards it (a grazing DOF, located at zero with a
+            // rate of round-off size the wrong way): the rate is set to zero, and whatever that
+            // changes in kinetic energy is booked as dissipated, so the event reports the energy
+            // the impact model actually received.
+            let grazing = kinetic_energy(&self.mass, &self.rates);
             self.rates[d] = 0.0;
+            self.energy.dissipated += grazing - kinetic_energy(&self.mass, &self.rates);
         }
+        let kin_before = kinetic_energy(&self.mass, &self.rates);
         let mut st = self.statuses.clone();
         let mut v = self.rates.clone();
         let report = impact_model(&self.mass, &mut st, &mut v, k, &self.opts.model)?;
@@ -322,10 +327,12 @@ impl<'a> Engine<'a> {
         Ok(Outcome {
             stop_reason: reason,
             t_end: self.t,
+            // With `continue_until_fallen` a column that has tipped beyond a pivot may still end
+            // in tension or sliding while it falls (its corner lifts off): it has overturned.
             overturned: matches!(
                 reason,
                 StopReason::Overturned { .. } | StopReason::Fallen { .. }
-            ),
+            ) || self.tipped_recorded.iter().any(|&t| t),
             impacts: self.impacts,
             events: std::mem::take(&mut self.events),
             history: self.history.take(),

@@ -333,7 +333,9 @@ pub struct Outcome {
     pub stop_reason: StopReason,
     /// Time reached (s).
     pub t_end: f64,
-    /// Stopped by overturning (static tipping, or fallen with `continue_until_fallen`).
+    /// Overturned: stopped by static tipping, or fallen with `continue_until_fallen` — or, with
+    /// that option, tipped beyond a pivot before the run ended for another reason (a falling
+    /// block whose corner lifts off ends in `Tension`).
     pub overturned: bool,
     /// Number of impacts.
     pub impacts: usize,
