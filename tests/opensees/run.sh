@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Real OpenSees (openseespy) integrates a single block and the thesis 4.2 two-block column on
+# compression-only contact springs; at every impact the rocking library (through ctypes) decides
+# the new configuration and velocities from OpenSees's own mass matrix, and at every opening it
+# must pick what OpenSees did. Compared with Housner's exact ratio and with the C harness
+# (c_examples/opensees_style_harness.c, itself checked against the Rust driver by
+# tests/harness_vs_driver.rs). Exits 0 on success.
+#
+# openseespy is a test-only dependency (its licence forbids redistribution): it lives in
+# tests/opensees/.venv, created here, and nowhere in the library. openseespy 3.7.1.2 has wheels
+# for Python 3.11 (3.8 needs Python >= 3.12); set PYTHON to choose the interpreter.
+set -euo pipefail
+here="$(cd "$(dirname "$0")" && pwd)"
+root="$(cd "$here/../.." && pwd)"
+SECONDS=0
+py="${PYTHON:-$(command -v python3.11 || command -v python3)}"
+if [ ! -x "$here/.venv/bin/python" ]; then
+    "$py" -m venv "$here/.venv"
+fi
+"$here/.venv/bin/python" -m pip install -q --disable-pip-version-check openseespy==3.7.1.2
+lib="$root/target/release/librocking.so"
+[ -f "$lib" ] || (cd "$root" && cargo build --release)
+mkdir -p "$root/target/c_examples"
+exe="$root/target/c_examples/opensees_style_harness"
+cc -std=c99 -O2 -I"$root/include" "$root/c_examples/opensees_style_harness.c" -o "$exe" \
+    -L"$root/target/release" -lrocking -lm -Wl,-rpath,"$root/target/release"
+# OpenSees prints a solver warning when GimmeMCK's analyze() meets the singular mass matrix
+# (massless rotations) and "Process 0 Terminating" at exit: both harmless, filtered.
+"$here/.venv/bin/python" "$here/rocking_opensees.py" "$lib" "$exe" 2>&1 \
+    | grep -v -e "FullGenLinLapackSolver::solve() -factorization failed" -e "^Process 0 Terminating" \
+    ; status=${PIPESTATUS[0]}
+echo "tests/opensees/run.sh: exit ${status} after ${SECONDS} s"
+exit "$status"
