@@ -374,6 +374,7 @@ impl<'a> Engine<'a> {
         }
         let duration = opts.duration;
         let dt = opts.dt;
+        let motion_end = self.motion.end_time();
         let mut next_progress = 0.0;
         loop {
             if let Some(cb) = progress.as_mut() {
@@ -392,11 +393,16 @@ impl<'a> Engine<'a> {
             if self.n_events as f64 > opts.max_events_per_second * self.t.max(1.0) {
                 return self.stop(StopReason::TooManyEvents);
             }
-            let h = if remaining < 1.5 * dt && remaining > dt {
+            let mut h = if remaining < 1.5 * dt && remaining > dt {
                 0.5 * remaining
             } else {
                 dt.min(remaining)
             };
+            // End a step exactly where the ground motion ends: its acceleration has a kink or a
+            // jump there, which a straddling step would integrate at first order only.
+            if self.t < motion_end && self.t + h > motion_end && motion_end - self.t > 1e-9 * dt {
+                h = motion_end - self.t;
+            }
             let t0 = self.t;
             let t1 = t0 + h;
             let ag1 = self.motion.acceleration(t1);
