@@ -12,6 +12,7 @@ pub mod column;
 pub mod cone;
 pub mod configuration;
 pub mod design;
+pub mod driver;
 pub mod enumeration;
 pub mod error;
 pub mod excitation;

@@ -1,0 +1,565 @@
+//! Equations of motion of a configuration and the per-step checks, without allocation.
+//!
+//! General path: the pose of the whole column ([`Column::pose_into`]), `M_FF` of the open DOFs
+//! ([`Pose::mass_entry`]), `q_F` ([`Pose::load_entry`], plus the exact velocity terms on
+//! request) and a small Cholesky solve. Fast paths, exact and not approximations:
+//! - one open DOF: the part above rotates rigidly about a pivot fixed to the ground (all other
+//!   interfaces are closed, so straight), `M_aa` is its constant moment of inertia about the
+//!   pivot and `q_a(θ) = S0 (a_g r_y − g r_x)` with `r = R(θ)(G − P)`; the velocity terms vanish
+//!   (the centripetal force passes through the fixed pivot);
+//! - everything closed: the column is straight, `q = a_g Qa − g Qg` with constants.
+
+use crate::cholesky;
+use crate::column::{Column, Pose};
+use crate::configuration::Status;
+
+/// Rigid rotation of the part above interface `k_a` about the pivot of DOF `a` (straight column).
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Rigid {
+    pub s0: f64,
+    /// `G − P` in the straight column.
+    pub dx: f64,
+    pub dy: f64,
+    /// Inverse of the moment of inertia about the pivot, `1 / M_aa`.
+    pub inv_ip: f64,
+}
+
+impl Rigid {
+    /// `(r_x, r_y)` for the rotation `theta`.
+    #[inline(always)]
+    pub fn arm(&self, theta: f64) -> (f64, f64) {
+        let (s, c) = theta.sin_cos();
+        (c * self.dx - s * self.dy, s * self.dx + c * self.dy)
+    }
+
+    #[inline(always)]
+    pub fn accel(&self, theta: f64, ag: f64, g: f64) -> f64 {
+        let (rx, ry) = self.arm(theta);
+        self.s0 * (ag * ry - g * rx) * self.inv_ip
+    }
+}
+
+/// Results of the end-of-step checks (accelerations are left in `Dynamics::acc_full`, the
+/// opening margins in `Dynamics::margin`).
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Check {
+    /// Largest opening margin over the closed DOFs (`> 0`: the reaction test fails).
+    pub max_margin: f64,
+    pub tension: Option<usize>,
+    pub sliding: Option<usize>,
+    pub tipped: Option<usize>,
+    pub fallen: Option<usize>,
+    /// Power of the ground motion's inertial load, `Σ_f q^{ag}_f φ̇_f`.
+    pub power: f64,
+    /// `false` when the mass matrix of the configuration was not positive definite.
+    pub ok: bool,
+}
+
+pub(crate) struct Dynamics<'a> {
+    pub col: &'a Column,
+    pub n: usize,
+    pub g: f64,
+    pub exact: bool,
+    pub tol: f64,
+    pub friction: f64,
+    pub pose: Pose,
+    pub rigid: Vec<Rigid>,
+    straight_qa: Vec<f64>,
+    straight_qg: Vec<f64>,
+    straight_isq: Vec<f64>,
+    centre_y0: Vec<f64>,
+    masses: Vec<f64>,
+    /// Scratch full DOF vectors for the general path (zero outside the open DOFs).
+    phi: Vec<f64>,
+    rates: Vec<f64>,
+    mk: Vec<f64>,
+    rhs: Vec<f64>,
+    vload: Vec<f64>,
+    cacc: Vec<[f64; 2]>,
+    sa: Vec<f64>,
+    sb: Vec<[f64; 2]>,
+    q: Vec<f64>,
+    isq: Vec<f64>,
+    /// Accelerations of the last check (full, `2n`).
+    pub acc_full: Vec<f64>,
+    /// Opening margins of the last check (full, `2n`; `-inf` on DOFs that are no generators).
+    pub margin: Vec<f64>,
+    /// Block rotations of the last check.
+    pub block_angles: Vec<f64>,
+}
+
+impl<'a> Dynamics<'a> {
+    pub fn new(
+        col: &'a Column,
+        gravity: f64,
+        exact: bool,
+        tol: f64,
+        friction: f64,
+    ) -> Dynamics<'a> {
+        let n = col.n_interfaces();
+        let m = 2 * n;
+        let pose = col.pose(&vec![0.0; m]);
+        let mut rigid = Vec::with_capacity(m);
+        let mut qa = Vec::with_capacity(m);
+        let mut qg = Vec::with_capacity(m);
+        let mut isq = Vec::with_capacity(m);
+        for a in 0..m {
+            let k = a % n;
+            let p = if a < n {
+                pose.right_pivots[k]
+            } else {
+                pose.left_pivots[k]
+            };
+            let (s0, gc) = pose.mass_above(k);
+            let ip = pose.mass_entry(a, a);
+            rigid.push(Rigid {
+                s0,
+                dx: gc[0] - p[0],
+                dy: gc[1] - p[1],
+                inv_ip: 1.0 / ip,
+            });
+            qa.push(pose.load_entry(a, 1.0, 0.0));
+            qg.push(-pose.load_entry(a, 0.0, 1.0));
+            isq.push(1.0 / ip.sqrt());
+        }
+        let centre_y0 = pose.centres.iter().map(|c| c[1]).collect();
+        Dynamics {
+            col,
+            n,
+            g: gravity,
+            exact,
+            tol,
+            friction,
+            masses: col.blocks().iter().map(|b| b.mass).collect(),
+            pose,
+            rigid,
+            straight_qa: qa,
+            straight_qg: qg,
+            straight_isq: isq,
+            centre_y0,
+            phi: vec![0.0; m],
+            rates: vec![0.0; m],
+            mk: vec![0.0; n * n],
+            rhs: vec![0.0; n],
+            vload: vec![0.0; m],
+            cacc: vec![[0.0; 2]; n],
+            sa: vec![0.0; n],
+            sb: vec![[0.0; 2]; n],
+            q: vec![0.0; m],
+            isq: vec![0.0; m],
+            acc_full: vec![0.0; m],
+            margin: vec![f64::NEG_INFINITY; m],
+            block_angles: vec![0.0; n],
+        }
+    }
+
+    /// Smallest potential energy that tips a part of the column statically (straight column).
+    pub fn tipping_energy(&self) -> f64 {
+        self.rigid
+            .iter()
+            .map(|r| r.s0 * self.g * ((r.dx * r.dx + r.dy * r.dy).sqrt() - r.dy))
+            .fold(f64::INFINITY, f64::min)
+    }
+
+    /// Accelerations of the open DOFs (reduced vectors `x`, `v`, output `out`, all of length
+    /// `open.len()`). Returns `false` if the mass matrix is not positive definite.
+    #[inline]
+    pub fn accel(
+        &mut self,
+        open: &[usize],
+        statuses: &[Status],
+        ag: f64,
+        x: &[f64],
+        v: &[f64],
+        out: &mut [f64],
+    ) -> bool {
+        match open.len() {
+            0 => true,
+            1 => {
+                out[0] = self.rigid[open[0]].accel(x[0], ag, self.g);
+                true
+            }
+            k => {
+                for i in 0..k {
+                    self.phi[open[i]] = x[i];
+                    self.rates[open[i]] = v[i];
+                }
+                self.col.pose_into(&self.phi, &mut self.pose);
+                let ok = self.solve_open(open, statuses, ag);
+                out[..k].copy_from_slice(&self.rhs[..k]);
+                ok
+            }
+        }
+    }
+
+    /// Sets the scratch vectors to zero (call when the configuration changes).
+    pub fn reset_scratch(&mut self) {
+        self.phi.iter_mut().for_each(|v| *v = 0.0);
+        self.rates.iter_mut().for_each(|v| *v = 0.0);
+    }
+
+    /// Velocity terms of the exact equations into `vload` (uses `pose`, `rates`).
+    fn velocity_load(&mut self, statuses: &[Status]) {
+        let n = self.n;
+        centre_accelerations(&self.pose, statuses, &self.rates, None, &mut self.cacc);
+        self.suffix_moments();
+        for d in 0..2 * n {
+            let k = d % n;
+            let p = if d < n {
+                self.pose.right_pivots[k]
+            } else {
+                self.pose.left_pivots[k]
+            };
+            let b = self.sb[k];
+            self.vload[d] = -(self.sa[k] - (p[0] * b[1] - p[1] * b[0]));
+        }
+    }
+
+    /// Suffix sums `Σ_{j≥k} m_j c_j × a_j` and `Σ_{j≥k} m_j a_j` of `cacc`.
+    fn suffix_moments(&mut self) {
+        let (mut a, mut b) = (0.0, [0.0, 0.0]);
+        for j in (0..self.n).rev() {
+            let m = self.masses[j];
+            let c = self.pose.centres[j];
+            let ac = self.cacc[j];
+            a += m * (c[0] * ac[1] - c[1] * ac[0]);
+            b = [b[0] + m * ac[0], b[1] + m * ac[1]];
+            self.sa[j] = a;
+            self.sb[j] = b;
+        }
+    }
+
+    /// Solves `M_FF a_F = q_F` on the current `pose`; the result is in `rhs[..k]`.
+    fn solve_open(&mut self, open: &[usize], statuses: &[Status], ag: f64) -> bool {
+        let k = open.len();
+        if self.exact {
+            self.velocity_load(statuses);
+        }
+        let mk = &mut self.mk[..k * k];
+        for r in 0..k {
+            for c in r..k {
+                let v = self.pose.mass_entry(open[r], open[c]);
+                mk[r * k + c] = v;
+                mk[c * k + r] = v;
+            }
+            let mut q = self.pose.load_entry(open[r], ag, self.g);
+            if self.exact {
+                q += self.vload[open[r]];
+            }
+            self.rhs[r] = q;
+        }
+        if !cholesky::factor(mk, k) {
+            return false;
+        }
+        cholesky::solve(mk, k, &mut self.rhs[..k]);
+        true
+    }
+
+    /// The end-of-step checks at the state `phi`, `rates` (full `2n`) and ground acceleration
+    /// `ag`. Writes `acc_full`, `margin`, `block_angles`. `forces`: also tension and sliding.
+    pub fn check(
+        &mut self,
+        open: &[usize],
+        statuses: &[Status],
+        ag: f64,
+        phi: &[f64],
+        rates: &[f64],
+        forces: bool,
+    ) -> Check {
+        let n = self.n;
+        let g = self.g;
+        let mut out = Check {
+            max_margin: f64::NEG_INFINITY,
+            ok: true,
+            ..Check::default()
+        };
+        match open.len() {
+            0 => {
+                // Straight column moving with the ground.
+                let mut bmax = 0.0_f64;
+                for d in 0..2 * n {
+                    let q = ag * self.straight_qa[d] - g * self.straight_qg[d];
+                    self.q[d] = q;
+                    bmax = bmax.max(q.abs() * self.straight_isq[d]);
+                }
+                let thr = self.tol * bmax;
+                for d in 0..2 * n {
+                    let sigma = if d < n { -1.0 } else { 1.0 };
+                    let m = sigma * self.q[d] * self.straight_isq[d] - thr;
+                    self.margin[d] = m;
+                    out.max_margin = out.max_margin.max(m);
+                    self.acc_full[d] = 0.0;
+                }
+                self.block_angles.iter_mut().for_each(|v| *v = 0.0);
+                // N = S0 g, V = S0 a_g on every interface: the lowest decides.
+                if forces && ag.abs() > self.friction * g {
+                    out.sliding = Some(0);
+                }
+                out
+            }
+            1 if n == 1 => {
+                let d = open[0];
+                let r = self.rigid[d];
+                let theta = phi[d];
+                let omega = rates[d];
+                let (rx, ry) = r.arm(theta);
+                let eps = r.s0 * (ag * ry - g * rx) * r.inv_ip;
+                self.acc_full[d] = eps;
+                self.margin[0] = f64::NEG_INFINITY;
+                self.margin[1] = f64::NEG_INFINITY;
+                self.block_angles[0] = theta;
+                out.power = ag * r.s0 * ry * omega;
+                let sigma = statuses[0].sign();
+                if -sigma * rx > 0.0 {
+                    out.tipped = Some(0);
+                }
+                if theta.abs() >= 0.5 * std::f64::consts::PI {
+                    out.fallen = Some(0);
+                }
+                if forces {
+                    // c̈ = ε ẑ × r − ω² r; F = S0 (c̈ + (a_g, g)).
+                    let fx = r.s0 * (-eps * ry - omega * omega * rx + ag);
+                    let fy = r.s0 * (eps * rx - omega * omega * ry + g);
+                    self.classify_force(0, fx, fy, &mut out);
+                }
+                out
+            }
+            _ => {
+                self.general_check(open, statuses, ag, phi, rates, forces, &mut out);
+                out
+            }
+        }
+    }
+
+    /// Tension and friction tests on interface `k` with shear `v` and normal force `nn`.
+    fn classify_force(&self, k: usize, v: f64, nn: f64, out: &mut Check) {
+        let scale = 1e-9 * self.rigid[k].s0 * self.g;
+        if nn < -scale {
+            out.tension.get_or_insert(k);
+        } else if v.abs() > self.friction * nn.max(0.0) + scale {
+            out.sliding.get_or_insert(k);
+        }
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn general_check(
+        &mut self,
+        open: &[usize],
+        statuses: &[Status],
+        ag: f64,
+        phi: &[f64],
+        rates: &[f64],
+        forces: bool,
+        out: &mut Check,
+    ) {
+        let n = self.n;
+        let g = self.g;
+        self.phi.copy_from_slice(phi);
+        self.rates.copy_from_slice(rates);
+        self.col.pose_into(&self.phi, &mut self.pose);
+        out.ok = self.solve_open(open, statuses, ag);
+        self.acc_full.iter_mut().for_each(|v| *v = 0.0);
+        for (i, &d) in open.iter().enumerate() {
+            self.acc_full[d] = self.rhs[i];
+        }
+        // Loads and Jacobi scales of every generator (closed: both corners; open: its DOF).
+        let mut bmax = 0.0_f64;
+        for d in 0..2 * n {
+            let k = d % n;
+            let generator = match statuses[k].dof(k, n) {
+                None => true,
+                Some(a) => a == d,
+            };
+            if !generator {
+                self.isq[d] = 0.0;
+                continue;
+            }
+            let mut q = self.pose.load_entry(d, ag, g);
+            if self.exact {
+                q += self.vload[d];
+            }
+            self.q[d] = q;
+            self.isq[d] = 1.0 / self.pose.mass_entry(d, d).sqrt();
+            bmax = bmax.max(q.abs() * self.isq[d]);
+        }
+        let thr = self.tol * bmax;
+        for d in 0..2 * n {
+            let k = d % n;
+            if statuses[k].is_open() {
+                self.margin[d] = f64::NEG_INFINITY;
+                continue;
+            }
+            let ma: f64 = open
+                .iter()
+                .map(|&f| self.pose.mass_entry(d, f) * self.acc_full[f])
+                .sum();
+            let sigma = if d < n { -1.0 } else { 1.0 };
+            let m = sigma * (self.q[d] - ma) * self.isq[d] - thr;
+            self.margin[d] = m;
+            out.max_margin = out.max_margin.max(m);
+        }
+        let mut power = 0.0;
+        for &f in open {
+            power += self.pose.load_entry(f, ag, 0.0) * rates[f];
+        }
+        out.power = power;
+        self.block_angles.copy_from_slice(&self.pose.block_angles);
+        // Tipping of the part above each open interface, in the frame of the block below.
+        for k in 0..n {
+            let sigma = statuses[k].sign();
+            if sigma == 0.0 {
+                continue;
+            }
+            let p = if sigma < 0.0 {
+                self.pose.right_pivots[k]
+            } else {
+                self.pose.left_pivots[k]
+            };
+            let (_, c) = self.pose.mass_above(k);
+            let alpha = if k == 0 {
+                0.0
+            } else {
+                self.pose.block_angles[k - 1]
+            };
+            let (s, co) = alpha.sin_cos();
+            let along = (c[0] - p[0]) * co + (c[1] - p[1]) * s;
+            if -sigma * along > 0.0 {
+                out.tipped = Some(k);
+                break;
+            }
+        }
+        if let Some(j) = self
+            .pose
+            .block_angles
+            .iter()
+            .position(|a| a.abs() >= 0.5 * std::f64::consts::PI)
+        {
+            let k = (0..=j)
+                .max_by(|&a, &b| {
+                    let ra = (phi[a] + phi[n + a]).abs();
+                    let rb = (phi[b] + phi[n + b]).abs();
+                    ra.total_cmp(&rb)
+                })
+                .unwrap_or(0);
+            out.fallen = Some(k);
+        }
+        if forces {
+            centre_accelerations(
+                &self.pose,
+                statuses,
+                rates,
+                Some(&self.acc_full),
+                &mut self.cacc,
+            );
+            let (mut fx, mut fy) = (0.0, 0.0);
+            for k in (0..n).rev() {
+                let m = self.masses[k];
+                fx += m * (self.cacc[k][0] + ag);
+                fy += m * (self.cacc[k][1] + g);
+                let alpha = if k == 0 {
+                    0.0
+                } else {
+                    self.pose.block_angles[k - 1]
+                };
+                let (s, c) = alpha.sin_cos();
+                let v = fx * c + fy * s;
+                let nn = -fx * s + fy * c;
+                let scale = 1e-9 * self.rigid[k].s0 * g;
+                if nn < -scale {
+                    out.tension = Some(k);
+                } else if v.abs() > self.friction * nn.max(0.0) + scale {
+                    out.sliding = Some(k);
+                }
+            }
+        }
+    }
+
+    /// Kinetic and potential energy of a state (relative to the straight column).
+    pub fn energy(&mut self, open: &[usize], phi: &[f64], rates: &[f64]) -> (f64, f64) {
+        self.col.pose_into(phi, &mut self.pose);
+        let mut t = 0.0;
+        for &a in open {
+            for &b in open {
+                t += rates[a] * self.pose.mass_entry(a, b) * rates[b];
+            }
+        }
+        let v: f64 = (0..self.n)
+            .map(|j| self.masses[j] * self.g * (self.pose.centres[j][1] - self.centre_y0[j]))
+            .sum();
+        (0.5 * t, v)
+    }
+
+    /// Power of the ground motion's inertial load at a state (general path).
+    pub fn power(&mut self, open: &[usize], ag: f64, phi: &[f64], rates: &[f64]) -> f64 {
+        if open.is_empty() || ag == 0.0 {
+            return 0.0;
+        }
+        self.col.pose_into(phi, &mut self.pose);
+        open.iter()
+            .map(|&f| self.pose.load_entry(f, ag, 0.0) * rates[f])
+            .sum()
+    }
+
+    /// Full `2n × 2n` mass matrix and load vector (with the velocity terms when exact) at a
+    /// state, for the models.
+    pub fn full_system(
+        &mut self,
+        statuses: &[Status],
+        ag: f64,
+        phi: &[f64],
+        rates: &[f64],
+        mass: &mut [f64],
+        load: &mut [f64],
+    ) {
+        self.col.pose_into(phi, &mut self.pose);
+        self.col.mass_matrix_into(&self.pose, mass);
+        self.col.load_vector_into(&self.pose, ag, self.g, load);
+        if self.exact {
+            self.rates.copy_from_slice(rates);
+            self.velocity_load(statuses);
+            for (l, v) in load.iter_mut().zip(&self.vload) {
+                *l += v;
+            }
+        }
+    }
+}
+
+/// Accelerations of the block centres relative to the ground for DOF rates `rates` and DOF
+/// accelerations `acc` (`None`: zero, the centripetal part only). The active pivot of each
+/// interface is a material point of both blocks it joins.
+pub(crate) fn centre_accelerations(
+    pose: &Pose,
+    statuses: &[Status],
+    rates: &[f64],
+    acc: Option<&[f64]>,
+    out: &mut [[f64; 2]],
+) {
+    let n = statuses.len();
+    let (mut omega, mut eps) = (0.0_f64, 0.0_f64);
+    let mut hinge = [0.0_f64, 0.0];
+    let mut hinge_acc = [0.0_f64, 0.0];
+    for j in 0..n {
+        let p = if statuses[j] == Status::OpenLeft {
+            pose.left_pivots[j]
+        } else {
+            pose.right_pivots[j]
+        };
+        let d = [p[0] - hinge[0], p[1] - hinge[1]];
+        let acc_p = [
+            hinge_acc[0] - eps * d[1] - omega * omega * d[0],
+            hinge_acc[1] + eps * d[0] - omega * omega * d[1],
+        ];
+        omega += rates[j] + rates[n + j];
+        if let Some(a) = acc {
+            eps += a[j] + a[n + j];
+        }
+        let c = pose.centres[j];
+        let r = [c[0] - p[0], c[1] - p[1]];
+        out[j] = [
+            acc_p[0] - eps * r[1] - omega * omega * r[0],
+            acc_p[1] + eps * r[0] - omega * omega * r[1],
+        ];
+        hinge = p;
+        hinge_acc = acc_p;
+    }
+}

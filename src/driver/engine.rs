@@ -1,0 +1,725 @@
+//! The simulation loop: steps, checks, event location and the calls to the models.
+
+use super::dynamics::Dynamics;
+use super::events::{hermite, hermite_crossing, hermite_rate, illinois, lock_dof};
+use super::integrator::Stepper;
+use super::{
+    DriverError, EnergyBalance, Event, EventKind, EventLocator, GroundMotion, History, Outcome,
+    Recording, SimulationOptions, StopReason,
+};
+use crate::column::{Column, Pose};
+use crate::cone::ModelReport;
+use crate::configuration::{open_dofs, Status};
+use crate::error::{ErrorKind, RockingError};
+use crate::impact::kinetic_energy;
+use crate::{impact_model, opening_model};
+
+/// Look-ahead ladder of the opening judgement (SPEC §5 trap (a)), in time steps.
+const LOOK_AHEAD: [f64; 4] = [1e-3, 1e-2, 1e-1, 1.0];
+
+enum Found {
+    Impact(usize),
+    Opening,
+}
+
+pub(crate) struct Engine<'a> {
+    motion: &'a dyn GroundMotion,
+    opts: &'a SimulationOptions,
+    rec: Recording,
+    n: usize,
+    m: usize,
+    dynm: Dynamics<'a>,
+    stepper: Stepper,
+    t: f64,
+    ag: f64,
+    statuses: Vec<Status>,
+    open: Vec<usize>,
+    phi: Vec<f64>,
+    rates: Vec<f64>,
+    acc: Vec<f64>,
+    margin0: Vec<f64>,
+    power0: f64,
+    // Step buffers.
+    x0: Vec<f64>,
+    v0: Vec<f64>,
+    a0: Vec<f64>,
+    phi1: Vec<f64>,
+    rates1: Vec<f64>,
+    scratch_phi: Vec<f64>,
+    scratch_rates: Vec<f64>,
+    mass: Vec<f64>,
+    load: Vec<f64>,
+    // Bookkeeping.
+    events: Vec<Event>,
+    n_events: usize,
+    impacts: usize,
+    last_impact: Vec<f64>,
+    tipped_recorded: Vec<bool>,
+    energy: EnergyBalance,
+    potential_start: f64,
+    e_tip: f64,
+    settle_interval: f64,
+    peak: Vec<f64>,
+    history: Option<History>,
+    sample_pose: Pose,
+    steps: usize,
+}
+
+impl<'a> Engine<'a> {
+    pub fn new(
+        column: &'a Column,
+        motion: &'a dyn GroundMotion,
+        opts: &'a SimulationOptions,
+        rec: Recording,
+    ) -> Engine<'a> {
+        let n = column.n_interfaces();
+        let m = 2 * n;
+        let dynm = Dynamics::new(
+            column,
+            opts.gravity,
+            opts.exact_velocity_terms,
+            opts.model.tolerance,
+            opts.friction,
+        );
+        let e_tip = dynm.tipping_energy();
+        Engine {
+            motion,
+            opts,
+            rec,
+            n,
+            m,
+            dynm,
+            stepper: Stepper::new(n),
+            t: 0.0,
+            ag: 0.0,
+            statuses: vec![Status::Closed; n],
+            open: Vec::with_capacity(n),
+            phi: vec![0.0; m],
+            rates: vec![0.0; m],
+            acc: vec![0.0; m],
+            margin0: vec![f64::NEG_INFINITY; m],
+            power0: 0.0,
+            x0: vec![0.0; n],
+            v0: vec![0.0; n],
+            a0: vec![0.0; n],
+            phi1: vec![0.0; m],
+            rates1: vec![0.0; m],
+            scratch_phi: vec![0.0; m],
+            scratch_rates: vec![0.0; m],
+            mass: vec![0.0; m * m],
+            load: vec![0.0; m],
+            events: Vec::new(),
+            n_events: 0,
+            impacts: 0,
+            last_impact: vec![f64::NEG_INFINITY; n],
+            tipped_recorded: vec![false; n],
+            energy: EnergyBalance::default(),
+            potential_start: 0.0,
+            e_tip,
+            settle_interval: opts.settle_interval.unwrap_or(4.0 * opts.dt),
+            peak: vec![0.0; n],
+            history: rec.history_every.map(|_| History {
+                n_interfaces: n,
+                ..History::default()
+            }),
+            sample_pose: Pose::default(),
+            steps: 0,
+        }
+    }
+
+    fn set_open(&mut self) {
+        self.open.clear();
+        self.open.extend(open_dofs(&self.statuses));
+        self.dynm.reset_scratch();
+    }
+
+    /// Recomputes the accelerations, margins and power at the current state.
+    fn refresh(&mut self) -> Result<(), DriverError> {
+        let c = self.dynm.check(
+            &self.open,
+            &self.statuses,
+            self.ag,
+            &self.phi,
+            &self.rates,
+            false,
+        );
+        if !c.ok {
+            return Err(not_positive_definite());
+        }
+        self.acc.copy_from_slice(&self.dynm.acc_full);
+        self.margin0.copy_from_slice(&self.dynm.margin);
+        self.power0 = c.power;
+        Ok(())
+    }
+
+    fn record_sample(&mut self) {
+        if let Some(h) = &mut self.history {
+            h.t.push(self.t);
+            h.phi.extend_from_slice(&self.phi);
+            h.rates.extend_from_slice(&self.rates);
+            h.statuses.extend_from_slice(&self.statuses);
+            self.dynm.col.pose_into(&self.phi, &mut self.sample_pose);
+            h.block_angles
+                .extend_from_slice(&self.sample_pose.block_angles);
+        }
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn push_event(
+        &mut self,
+        kind: EventKind,
+        interface: Option<usize>,
+        kinetic_before: f64,
+        kinetic_after: f64,
+        before: Option<&[Status]>,
+        report: Option<ModelReport>,
+    ) {
+        self.n_events += 1;
+        if self.rec.events {
+            self.events.push(Event {
+                t: self.t,
+                kind,
+                interface,
+                kinetic_before,
+                kinetic_after,
+                statuses_before: before.unwrap_or(&self.statuses).to_vec(),
+                statuses_after: self.statuses.clone(),
+                report,
+            });
+        }
+    }
+
+    /// The opening judgement a little past the current instant (trap (a)): returns whether
+    /// something opened. `escalate`: widen the look-ahead up to one step.
+    fn try_opening(&mut self, escalate: bool) -> Result<bool, DriverError> {
+        let ladder = if escalate {
+            &LOOK_AHEAD[..]
+        } else {
+            &LOOK_AHEAD[..1]
+        };
+        for &f in ladder {
+            let eps = f * self.opts.dt;
+            for d in 0..self.m {
+                self.scratch_phi[d] =
+                    self.phi[d] + eps * self.rates[d] + 0.5 * eps * eps * self.acc[d];
+                self.scratch_rates[d] = self.rates[d] + eps * self.acc[d];
+            }
+            let ag = self.motion.acceleration(self.t + eps);
+            let c = self.dynm.check(
+                &self.open,
+                &self.statuses,
+                ag,
+                &self.scratch_phi,
+                &self.scratch_rates,
+                false,
+            );
+            if c.max_margin <= 0.0 {
+                continue;
+            }
+            self.dynm.full_system(
+                &self.statuses,
+                ag,
+                &self.scratch_phi,
+                &self.scratch_rates,
+                &mut self.mass,
+                &mut self.load,
+            );
+            let mut st = self.statuses.clone();
+            let mut a = vec![0.0; self.m];
+            let report = opening_model(&self.mass, &self.load, &mut st, &mut a, &self.opts.model)?;
+            if !report.changed {
+                continue;
+            }
+            let before = std::mem::replace(&mut self.statuses, st);
+            let first = (0..self.n).find(|&k| before[k] != self.statuses[k]);
+            self.set_open();
+            let kin = kinetic_energy(&self.mass, &self.rates);
+            self.push_event(
+                EventKind::Opening,
+                first,
+                kin,
+                kin,
+                Some(&before),
+                Some(report),
+            );
+            self.refresh()?;
+            return Ok(true);
+        }
+        Ok(false)
+    }
+
+    /// Impact of DOF `d` at the current instant (its angle is set to zero).
+    fn impact(&mut self, d: usize) -> Result<(), DriverError> {
+        let n = self.n;
+        let k = d % n;
+        self.phi[d] = 0.0;
+        self.dynm.full_system(
+            &self.statuses,
+            self.ag,
+            &self.phi,
+            &self.rates,
+            &mut self.mass,
+            &mut self.load,
+        );
+        let kin_before = kinetic_energy(&self.mass, &self.rates);
+        let sigma = self.statuses[k].sign();
+        if sigma * self.rates[d] > 0.0 {
+            // Touching zero without moving towards it (a DOF that never really opened).
+            self.rates[d] = 0.0;
+        }
+        let mut st = self.statuses.clone();
+        let mut v = self.rates.clone();
+        let report = impact_model(&self.mass, &mut st, &mut v, k, &self.opts.model)?;
+        let before = std::mem::replace(&mut self.statuses, st);
+        self.rates.copy_from_slice(&v);
+        self.set_open();
+        let kin_after = report.kinetic_after;
+        self.energy.dissipated += kin_before - kin_after;
+        self.impacts += 1;
+        self.push_event(
+            EventKind::Impact,
+            Some(k),
+            kin_before,
+            kin_after,
+            Some(&before),
+            Some(report),
+        );
+        // Settling: shrinking impacts end in a closed interface.
+        let interval = self.t - self.last_impact[k];
+        self.last_impact[k] = self.t;
+        if let Some(dof) = self.statuses[k].dof(k, n) {
+            if kin_after < self.opts.settle_energy_fraction * self.e_tip
+                || interval < self.settle_interval
+            {
+                let before = self.statuses.clone();
+                lock_dof(&self.mass, self.m, &self.open, dof, &mut self.rates);
+                self.statuses[k] = Status::Closed;
+                self.set_open();
+                let kin = kinetic_energy(&self.mass, &self.rates);
+                self.energy.dissipated += kin_after - kin;
+                self.push_event(
+                    EventKind::Settled,
+                    Some(k),
+                    kin_after,
+                    kin,
+                    Some(&before),
+                    None,
+                );
+            }
+        }
+        self.refresh()
+    }
+
+    fn stop(&mut self, reason: StopReason) -> Result<Outcome, DriverError> {
+        let (kin, pot) = self.dynm.energy(&self.open, &self.phi, &self.rates);
+        self.energy.kinetic_end = kin;
+        self.energy.potential_change = pot - self.potential_start;
+        if let Some(h) = &self.history {
+            if h.t.last() != Some(&self.t) {
+                self.record_sample();
+            }
+        }
+        Ok(Outcome {
+            stop_reason: reason,
+            t_end: self.t,
+            overturned: matches!(
+                reason,
+                StopReason::Overturned { .. } | StopReason::Fallen { .. }
+            ),
+            impacts: self.impacts,
+            events: std::mem::take(&mut self.events),
+            history: self.history.take(),
+            peak_block_rotation: std::mem::take(&mut self.peak),
+            energy: self.energy,
+            statuses_end: self.statuses.clone(),
+        })
+    }
+
+    pub fn run(
+        mut self,
+        mut progress: Option<&mut dyn FnMut(f64)>,
+    ) -> Result<Outcome, DriverError> {
+        let n = self.n;
+        let opts = self.opts;
+        if let Some(angles) = &opts.initial_angles {
+            for (k, &a) in angles.iter().enumerate() {
+                if a < 0.0 {
+                    self.statuses[k] = Status::OpenRight;
+                    self.phi[k] = a;
+                } else if a > 0.0 {
+                    self.statuses[k] = Status::OpenLeft;
+                    self.phi[n + k] = a;
+                }
+            }
+        }
+        self.set_open();
+        self.ag = self.motion.acceleration(0.0);
+        let (_, pot) = self.dynm.energy(&self.open, &self.phi, &self.rates);
+        self.potential_start = pot;
+        self.refresh()?;
+        let pose = self.dynm.col.pose(&self.phi);
+        for (p, a) in self.peak.iter_mut().zip(&pose.block_angles) {
+            *p = a.abs();
+        }
+        self.record_sample();
+        if self.margin0.iter().any(|&v| v > 0.0) {
+            self.try_opening(true)?;
+        }
+        let duration = opts.duration;
+        let dt = opts.dt;
+        let mut next_progress = 0.0;
+        loop {
+            if let Some(cb) = progress.as_mut() {
+                if self.t >= next_progress {
+                    cb((self.t / duration).min(1.0));
+                    next_progress += 0.01 * duration;
+                }
+            }
+            let remaining = duration - self.t;
+            if remaining <= 1e-9 * dt {
+                if let Some(cb) = progress.as_mut() {
+                    cb(1.0);
+                }
+                return self.stop(StopReason::Duration);
+            }
+            if self.n_events as f64 > opts.max_events_per_second * self.t.max(1.0) {
+                return self.stop(StopReason::TooManyEvents);
+            }
+            let h = if remaining < 1.5 * dt && remaining > dt {
+                0.5 * remaining
+            } else {
+                dt.min(remaining)
+            };
+            let t0 = self.t;
+            let t1 = t0 + h;
+            let ag1 = self.motion.acceleration(t1);
+            let k = self.open.len();
+            if k == 0 {
+                let c = self
+                    .dynm
+                    .check(&[], &self.statuses, ag1, &self.phi, &self.rates, true);
+                if c.max_margin > 0.0 {
+                    let s = match opts.locator {
+                        EventLocator::Linear => linear_opening(&self.margin0, &self.dynm.margin),
+                        EventLocator::Hermite => {
+                            let g0 = self
+                                .margin0
+                                .iter()
+                                .copied()
+                                .fold(f64::NEG_INFINITY, f64::max);
+                            if g0 > 0.0 {
+                                0.0
+                            } else {
+                                let (dynm, statuses, phi, rates, motion) = (
+                                    &mut self.dynm,
+                                    &self.statuses,
+                                    &self.phi,
+                                    &self.rates,
+                                    self.motion,
+                                );
+                                illinois(
+                                    |s| {
+                                        dynm.check(
+                                            &[],
+                                            statuses,
+                                            motion.acceleration(t0 + s * h),
+                                            phi,
+                                            rates,
+                                            false,
+                                        )
+                                        .max_margin
+                                    },
+                                    0.0,
+                                    g0,
+                                    1.0,
+                                    c.max_margin,
+                                    1e-13,
+                                )
+                            }
+                        }
+                    };
+                    self.t = t0 + s * h;
+                    self.ag = self.motion.acceleration(self.t);
+                    self.refresh()?;
+                    if !self.try_opening(true)? {
+                        // The model keeps the column closed: accept the step (counted as an event
+                        // so that a disagreement can never loop).
+                        self.n_events += 1;
+                        self.t = t1;
+                        self.ag = ag1;
+                        self.refresh()?;
+                    }
+                    continue;
+                }
+                if let Some(k) = c.sliding {
+                    self.t = t1;
+                    self.ag = ag1;
+                    self.push_event(EventKind::Sliding, Some(k), 0.0, 0.0, None, None);
+                    return self.stop(StopReason::Sliding { interface: k });
+                }
+                self.t = t1;
+                self.ag = ag1;
+                self.margin0.copy_from_slice(&self.dynm.margin);
+                self.power0 = 0.0;
+                self.accepted_step();
+                continue;
+            }
+            // Integrate the open DOFs.
+            for (i, &d) in self.open.iter().enumerate() {
+                self.x0[i] = self.phi[d];
+                self.v0[i] = self.rates[d];
+                self.a0[i] = self.acc[d];
+            }
+            let ok = self.stepper.step(
+                opts.integrator,
+                &mut self.dynm,
+                &self.open,
+                &self.statuses,
+                self.motion,
+                t0,
+                h,
+                self.ag,
+                ag1,
+                &self.x0[..k],
+                &self.v0[..k],
+                &self.a0[..k],
+            );
+            if !ok {
+                return Err(not_positive_definite());
+            }
+            self.phi1.copy_from_slice(&self.phi);
+            self.rates1.copy_from_slice(&self.rates);
+            for (i, &d) in self.open.iter().enumerate() {
+                self.phi1[d] = self.stepper.x1[i];
+                self.rates1[d] = self.stepper.v1[i];
+            }
+            let c = self.dynm.check(
+                &self.open,
+                &self.statuses,
+                ag1,
+                &self.phi1,
+                &self.rates1,
+                true,
+            );
+            if !c.ok {
+                return Err(not_positive_definite());
+            }
+            // (2) impacts: a DOF crossing zero coming back; (1) openings: reaction signs.
+            let mut found: Option<(f64, Found)> = None;
+            for &d in &self.open {
+                let sigma = self.statuses[d % n].sign();
+                let (g0, g1) = (sigma * self.phi[d], sigma * self.phi1[d]);
+                if g1 < 0.0 && g0 >= 0.0 {
+                    let s = match opts.locator {
+                        EventLocator::Linear => g0 / (g0 - g1),
+                        EventLocator::Hermite => hermite_crossing(
+                            h,
+                            g0,
+                            g1,
+                            sigma * self.rates[d],
+                            sigma * self.rates1[d],
+                        ),
+                    };
+                    if found.as_ref().map_or(true, |f| s < f.0) {
+                        found = Some((s, Found::Impact(d)));
+                    }
+                }
+            }
+            if c.max_margin > 0.0 {
+                let s = match opts.locator {
+                    EventLocator::Linear => linear_opening(&self.margin0, &self.dynm.margin),
+                    EventLocator::Hermite => self.hermite_opening(t0, h, c.max_margin),
+                };
+                if found.as_ref().map_or(true, |f| s < f.0) {
+                    found = Some((s, Found::Opening));
+                }
+            }
+            if let Some((s, what)) = found {
+                self.n_events += 1;
+                self.move_to_event(t0, h, s)?;
+                match what {
+                    Found::Impact(d) => {
+                        self.impact(d)?;
+                        self.try_opening(false)?;
+                    }
+                    Found::Opening => {
+                        if !self.try_opening(true)? {
+                            self.refresh()?;
+                        }
+                    }
+                }
+                continue;
+            }
+            // Accept the step.
+            self.energy.ground_work += 0.5 * h * (self.power0 + c.power);
+            self.power0 = c.power;
+            self.phi.copy_from_slice(&self.phi1);
+            self.rates.copy_from_slice(&self.rates1);
+            for (i, &d) in self.open.iter().enumerate() {
+                self.acc[d] = self.stepper.a1[i];
+            }
+            self.margin0.copy_from_slice(&self.dynm.margin);
+            self.t = t1;
+            self.ag = ag1;
+            for (p, a) in self.peak.iter_mut().zip(&self.dynm.block_angles) {
+                *p = p.max(a.abs());
+            }
+            if let Some(k) = c.tension {
+                self.push_event(EventKind::Tension, Some(k), 0.0, 0.0, None, None);
+                return self.stop(StopReason::Tension { interface: k });
+            }
+            if let Some(k) = c.sliding {
+                self.push_event(EventKind::Sliding, Some(k), 0.0, 0.0, None, None);
+                return self.stop(StopReason::Sliding { interface: k });
+            }
+            if let Some(k) = c.tipped {
+                if !opts.continue_until_fallen {
+                    self.push_event(EventKind::Overturned, Some(k), 0.0, 0.0, None, None);
+                    return self.stop(StopReason::Overturned { interface: k });
+                }
+                if !self.tipped_recorded[k] {
+                    self.tipped_recorded[k] = true;
+                    self.push_event(EventKind::Overturned, Some(k), 0.0, 0.0, None, None);
+                }
+            }
+            if let Some(k) = c.fallen {
+                if opts.continue_until_fallen {
+                    return self.stop(StopReason::Fallen { interface: k });
+                }
+            }
+            self.accepted_step();
+        }
+    }
+
+    fn accepted_step(&mut self) {
+        self.steps += 1;
+        if let Some(every) = self.rec.history_every {
+            if self.steps % every == 0 {
+                self.record_sample();
+            }
+        }
+    }
+
+    /// Fraction of the step where the opening test first fails, by Illinois on the largest
+    /// margin evaluated on the Hermite-interpolated state.
+    fn hermite_opening(&mut self, t0: f64, h: f64, g1: f64) -> f64 {
+        let g0 = self
+            .margin0
+            .iter()
+            .copied()
+            .fold(f64::NEG_INFINITY, f64::max);
+        if g0 > 0.0 {
+            return 0.0;
+        }
+        let Engine {
+            dynm,
+            open,
+            statuses,
+            phi,
+            rates,
+            phi1,
+            rates1,
+            scratch_phi,
+            scratch_rates,
+            motion,
+            ..
+        } = self;
+        let f = |s: f64| {
+            scratch_phi.copy_from_slice(phi);
+            scratch_rates.copy_from_slice(rates);
+            for &d in open.iter() {
+                scratch_phi[d] = hermite(s, h, phi[d], phi1[d], rates[d], rates1[d]);
+                scratch_rates[d] = hermite_rate(s, h, phi[d], phi1[d], rates[d], rates1[d]);
+            }
+            dynm.check(
+                open,
+                statuses,
+                motion.acceleration(t0 + s * h),
+                scratch_phi,
+                scratch_rates,
+                false,
+            )
+            .max_margin
+        };
+        illinois(f, 0.0, g0, 1.0, g1, 1e-13)
+    }
+
+    /// Moves the state to the fraction `s` of the step just taken (which starts at the current
+    /// state): linear interpolation (thesis) or re-integration over `s h` (Hermite).
+    fn move_to_event(&mut self, t0: f64, h: f64, s: f64) -> Result<(), DriverError> {
+        let te = t0 + s * h;
+        let ag_e = self.motion.acceleration(te);
+        match self.opts.locator {
+            EventLocator::Linear => {
+                for &d in &self.open {
+                    self.phi[d] += s * (self.phi1[d] - self.phi[d]);
+                    self.rates[d] += s * (self.rates1[d] - self.rates[d]);
+                }
+            }
+            EventLocator::Hermite => {
+                if s > 0.0 {
+                    let k = self.open.len();
+                    let ok = self.stepper.step(
+                        self.opts.integrator,
+                        &mut self.dynm,
+                        &self.open,
+                        &self.statuses,
+                        self.motion,
+                        t0,
+                        s * h,
+                        self.ag,
+                        ag_e,
+                        &self.x0[..k],
+                        &self.v0[..k],
+                        &self.a0[..k],
+                    );
+                    if !ok {
+                        return Err(not_positive_definite());
+                    }
+                    for (i, &d) in self.open.iter().enumerate() {
+                        self.phi[d] = self.stepper.x1[i];
+                        self.rates[d] = self.stepper.v1[i];
+                    }
+                }
+            }
+        }
+        // An open DOF may not pass zero at the event (the located one is set to zero by the
+        // impact; others, crossing in the same step a hair later, are held at zero).
+        for &d in &self.open {
+            let sigma = self.statuses[d % self.n].sign();
+            if sigma * self.phi[d] < 0.0 {
+                self.phi[d] = 0.0;
+            }
+        }
+        self.t = te;
+        self.ag = ag_e;
+        let power = self.dynm.power(&self.open, ag_e, &self.phi, &self.rates);
+        self.energy.ground_work += 0.5 * s * h * (self.power0 + power);
+        // Every method (Wilson's acceleration state included) restarts from the equations of
+        // motion at the event.
+        self.refresh()
+    }
+}
+
+/// Linear interpolation of the margins (thesis): earliest crossing over the violated DOFs.
+fn linear_opening(m0: &[f64], m1: &[f64]) -> f64 {
+    let mut s = 1.0_f64;
+    for (&a, &b) in m0.iter().zip(m1) {
+        if b > 0.0 {
+            let si = if a > 0.0 || !a.is_finite() {
+                0.0
+            } else {
+                a / (a - b)
+            };
+            s = s.min(si);
+        }
+    }
+    s
+}
+
+fn not_positive_definite() -> DriverError {
+    DriverError::Model(RockingError::new(
+        ErrorKind::NotPositiveDefinite,
+        "the mass matrix of the open DOFs is not positive definite",
+    ))
+}
