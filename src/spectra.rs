@@ -127,9 +127,16 @@ impl Monolith {
 /// A column of `n_blocks` equal uniform blocks whose equivalent monolith has slenderness
 /// `H/B = slenderness` and size `R = ½√(B² + H²) = size` \[m\] (unit total mass: overturning does
 /// not depend on it).
-pub fn column_of_size(size: f64, slenderness: f64, n_blocks: usize) -> Result<Column, SpectraError> {
+pub fn column_of_size(
+    size: f64,
+    slenderness: f64,
+    n_blocks: usize,
+) -> Result<Column, SpectraError> {
     if !(size.is_finite() && size > 0.0) {
-        return Err(invalid("size", format!("must be finite and > 0, got {size}")));
+        return Err(invalid(
+            "size",
+            format!("must be finite and > 0, got {size}"),
+        ));
     }
     if !(slenderness.is_finite() && slenderness > 0.0) {
         return Err(invalid(
@@ -280,7 +287,10 @@ impl SweepOptions {
     fn validate(&self) -> Result<(), SpectraError> {
         self.time_step.validate()?;
         if !(self.tail.is_finite() && self.tail >= 0.0) {
-            return Err(invalid("tail", format!("must be finite and >= 0, got {}", self.tail)));
+            return Err(invalid(
+                "tail",
+                format!("must be finite and >= 0, got {}", self.tail),
+            ));
         }
         Ok(())
     }
@@ -321,7 +331,10 @@ fn exceedance_window(record: &Record, factor: f64, threshold: f64) -> Option<(f6
     let first = record.samples.iter().position(hit)?;
     let last = record.samples.iter().rposition(hit)?;
     let last = (last + 1).min(record.samples.len() - 1);
-    Some((first.saturating_sub(1) as f64 * record.dt, last as f64 * record.dt))
+    Some((
+        first.saturating_sub(1) as f64 * record.dt,
+        last as f64 * record.dt,
+    ))
 }
 
 /// `(0..n).map(f)` collected in order, in parallel with the `parallel` feature.
@@ -420,7 +433,11 @@ pub fn pulse_overturns(
     }
     let dt = options.time_step.dt(None, Some(t_p), mono.p);
     let sim = options.simulation(dt, pulse.end_time() + options.tail / mono.p);
-    Ok(overturns(column, &crate::excitation::Excitation::Pulse(pulse), &sim)?)
+    Ok(overturns(
+        column,
+        &crate::excitation::Excitation::Pulse(pulse),
+        &sim,
+    )?)
 }
 
 /// An overturning curve: safe / unsafe on a grid of `(t_p, a_p)` (thesis Fig. 8, 33, 40, 41).
@@ -500,12 +517,18 @@ pub fn overturning_curve(
     options.validate()?;
     for &t in t_p {
         if !(t.is_finite() && t > 0.0) {
-            return Err(invalid("t_p", format!("durations must be finite and > 0, got {t}")));
+            return Err(invalid(
+                "t_p",
+                format!("durations must be finite and > 0, got {t}"),
+            ));
         }
     }
     for &a in a_p {
         if !(a.is_finite() && a > 0.0) {
-            return Err(invalid("a_p", format!("amplitudes must be finite and > 0, got {a}")));
+            return Err(invalid(
+                "a_p",
+                format!("amplitudes must be finite and > 0, got {a}"),
+            ));
         }
     }
     let rows = map_indexed(t_p.len(), |i| {
@@ -614,10 +637,16 @@ impl OasOptions {
             return Err(invalid("levels", "every level must be finite and > 0"));
         }
         if self.sizes.is_empty() || self.sizes.iter().any(|r| !(r.is_finite() && *r > 0.0)) {
-            return Err(invalid("sizes", "needs at least one size, each finite and > 0"));
+            return Err(invalid(
+                "sizes",
+                "needs at least one size, each finite and > 0",
+            ));
         }
         if self.sizes.windows(2).any(|w| w[1] >= w[0]) {
-            return Err(invalid("sizes", "must be strictly decreasing (largest first)"));
+            return Err(invalid(
+                "sizes",
+                "must be strictly decreasing (largest first)",
+            ));
         }
         if self.n_blocks == 0 {
             return Err(invalid("n_blocks", "must be >= 1"));
@@ -637,7 +666,7 @@ pub fn record_overturns(
     let g = options.sweep.simulation.gravity;
     let mono = Monolith::of(&column, g);
     let pga = record.pga();
-    if !(pga > 0.0) {
+    if pga.is_nan() || pga <= 0.0 {
         return Err(invalid("record", format!("`{}` has zero PGA", record.name)));
     }
     let factor = level * mono.a_p_min / pga;
@@ -645,11 +674,7 @@ pub fn record_overturns(
     else {
         return Ok(false);
     };
-    let motion = ScaledRecord {
-        record,
-        factor,
-        t0,
-    };
+    let motion = ScaledRecord { record, factor, t0 };
     let dt = options.sweep.time_step.dt(Some(record.dt), None, mono.p);
     let end = if options.sweep.cut_after_last_exceedance {
         t_last - t0
@@ -972,7 +997,7 @@ pub fn oas(
     record
         .validate()
         .map_err(|e| invalid("record", e.to_string()))?;
-    if !(record.pga() > 0.0) {
+    if record.pga().is_nan() || record.pga() <= 0.0 {
         return Err(invalid("record", format!("`{}` has zero PGA", record.name)));
     }
     let levels = map_indexed(options.levels.len(), |k| {

@@ -2,6 +2,11 @@
 
 use std::process::ExitCode;
 
+mod args;
+mod design_cmd;
+mod spectra_cmd;
+mod spectra_svg;
+
 use rocking::column::{Block, Column, GRAVITY};
 use rocking::{impact_model, opening_model, samples, ModelOptions, Solver, Status};
 
@@ -9,6 +14,10 @@ const USAGE: &str = "usage: rocking <command>
 
 commands:
   thesis      reproduce the thesis's reference values through the library (SPEC §8)
+  oc          overturning curve of a pulse (thesis Fig. 8, 33, 40)
+  oas         overturning acceleration spectrum of a record (Fig. 36, 37, 43)
+  t1          replacement impulse duration t_1, t_1', beta of records (Eq. 20, 28)
+  design      pier width (Eq. 23, 24) and the Eq. 31 check
   help        this text
   version     the library version";
 
@@ -16,6 +25,10 @@ fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
     match args.first().map(String::as_str) {
         Some("thesis") => thesis(),
+        Some("oc") => spectra_cmd::run_oc(&args[1..]),
+        Some("oas") => spectra_cmd::run_oas(&args[1..]),
+        Some("t1") => spectra_cmd::run_t1(&args[1..]),
+        Some("design") => design_cmd::run_design(&args[1..]),
         Some("version" | "--version" | "-V") => {
             println!("rocking {}", env!("CARGO_PKG_VERSION"));
             ExitCode::SUCCESS
