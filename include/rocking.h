@@ -146,6 +146,8 @@ typedef struct RockingReport {
   double condition_estimate;
 } RockingReport;
 
+
+
 #ifdef __cplusplus
 extern "C" {
 #endif // __cplusplus

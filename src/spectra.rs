@@ -382,11 +382,17 @@ pub enum PulseShape {
 
 impl PulseShape {
     /// Half sine (thesis Fig. 8a, 33).
-    pub const HALF_SINE: PulseShape = PulseShape::HalfSines { lobes: 1 };
+    pub const fn half_sine() -> PulseShape {
+        PulseShape::HalfSines { lobes: 1 }
+    }
     /// Full sine (thesis Fig. 8b, 39, 40).
-    pub const FULL_SINE: PulseShape = PulseShape::HalfSines { lobes: 2 };
+    pub const fn full_sine() -> PulseShape {
+        PulseShape::HalfSines { lobes: 2 }
+    }
     /// Three half sines (thesis Fig. 8c).
-    pub const THREE_HALF_SINES: PulseShape = PulseShape::HalfSines { lobes: 3 };
+    pub const fn three_half_sines() -> PulseShape {
+        PulseShape::HalfSines { lobes: 3 }
+    }
 
     /// The pulse of peak `a_p` \[m/s²\] and duration parameter `t_p` \[s\].
     pub fn pulse(&self, a_p: f64, t_p: f64) -> Result<Pulse, SpectraError> {

@@ -110,9 +110,9 @@ fn read(path: &str) -> Result<Record, String> {
 
 fn parse_shape(s: &str) -> Result<PulseShape, String> {
     Ok(match s {
-        "half-sine" => PulseShape::HALF_SINE,
-        "full-sine" => PulseShape::FULL_SINE,
-        "three-half-sines" => PulseShape::THREE_HALF_SINES,
+        "half-sine" => PulseShape::half_sine(),
+        "full-sine" => PulseShape::full_sine(),
+        "three-half-sines" => PulseShape::three_half_sines(),
         "rectangular" => PulseShape::Rectangular,
         "triangular" => PulseShape::Triangular,
         "ricker" => PulseShape::Ricker,

@@ -50,7 +50,7 @@ fn half_sine_oc_tends_to_a_p_min_for_long_pulses() {
     let t_p: Vec<f64> = [2.0, 5.0, 20.0].iter().map(|x| x / m.p).collect();
     let oc = overturning_curve(
         &column,
-        PulseShape::HALF_SINE,
+        PulseShape::half_sine(),
         &t_p,
         &a_p,
         &SweepOptions::default(),
@@ -83,8 +83,10 @@ fn half_sine_short_pulse_obeys_the_critical_impulse() {
         tail: 8.0,
         ..SweepOptions::default()
     };
-    assert!(!pulse_overturns(&column, PulseShape::HALF_SINE, 0.98 * a_cr, t_p, &options).unwrap());
-    assert!(pulse_overturns(&column, PulseShape::HALF_SINE, 1.03 * a_cr, t_p, &options).unwrap());
+    assert!(
+        !pulse_overturns(&column, PulseShape::half_sine(), 0.98 * a_cr, t_p, &options).unwrap()
+    );
+    assert!(pulse_overturns(&column, PulseShape::half_sine(), 1.03 * a_cr, t_p, &options).unwrap());
 }
 
 /// Thesis Fig. 40: a monolithic 12 × 1 m column under full sines overturns on more of the
@@ -100,7 +102,7 @@ fn monolith_is_more_vulnerable_than_two_or_three_blocks() {
             let column = column_of_size(r, 12.0, n).unwrap();
             overturning_curve(
                 &column,
-                PulseShape::FULL_SINE,
+                PulseShape::full_sine(),
                 &t_p,
                 &a_p,
                 &SweepOptions::default(),
