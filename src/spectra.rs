@@ -687,9 +687,8 @@ pub fn record_overturns(
     } else {
         motion.end_time()
     };
-    let sim = options
-        .sweep
-        .simulation(dt, end + options.sweep.tail / mono.p);
+    let tail = options.sweep.tail / mono.p;
+    let sim = options.sweep.simulation(dt, end + tail);
     Ok(overturns(&column, &motion, &sim)?)
 }
 

@@ -35,7 +35,7 @@ pub const OAS_USAGE: &str =
 
 pub const T1_USAGE: &str =
     "usage: rocking t1 RECORD... [--slenderness 12] [--levels 80] [--sizes 120]
-          [--blocks 1] [--impacts 1] [--bisection] [--dt-factor 1] [--shard i/n] [--json]
+          [--blocks 1] [--impacts 1] [--bisection] [--dt-factor 1] [--threads N] [--shard i/n] [--json]
        rocking t1 --merge SHARD.json...
   t_1, t_1', beta, f_min of each record (JSON list with --json, else a table)";
 
@@ -89,6 +89,13 @@ fn oas_options(a: &Args) -> Result<OasOptions, String> {
 }
 
 fn sweep_common(a: &Args, s: &mut SweepOptions) -> Result<(), String> {
+    if let Some(n) = a.str("threads") {
+        let n: usize = n.parse().map_err(|_| format!("--threads: bad count {n}"))?;
+        // Results do not depend on it; only the first call can set the global pool.
+        let _ = rayon::ThreadPoolBuilder::new()
+            .num_threads(n)
+            .build_global();
+    }
     s.simulation.model.n_impacts = a.usize_or("impacts", 1)? as u32;
     s.time_step = s.time_step.scaled(a.f64_or("dt-factor", 1.0)?);
     s.tail = a.f64_or("tail", s.tail)?;
