@@ -619,6 +619,16 @@ impl Excitation {
     }
 }
 
+/// The driver's view of an excitation (the same `a_g(t)` and end time).
+impl crate::driver::GroundMotion for Excitation {
+    fn acceleration(&self, t: f64) -> f64 {
+        Excitation::acceleration(self, t)
+    }
+    fn end_time(&self) -> f64 {
+        Excitation::end_time(self)
+    }
+}
+
 impl From<Pulse> for Excitation {
     fn from(p: Pulse) -> Excitation {
         Excitation::Pulse(p)

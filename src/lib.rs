@@ -23,6 +23,7 @@ pub mod projection;
 pub mod records;
 pub mod samples;
 pub mod single_block;
+pub mod spectra;
 
 pub use cone::{ModelOptions, ModelReport, Solver};
 pub use configuration::Status;

@@ -6,11 +6,15 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
+mod args;
 mod bench_cmd;
+mod design_cmd;
 mod output;
 mod plot;
 mod scene;
 mod simulate;
+mod spectra_cmd;
+mod spectra_svg;
 mod thesis;
 
 #[derive(Parser)]
@@ -39,6 +43,30 @@ enum Command {
         #[arg(long)]
         plot: Option<PathBuf>,
     },
+    /// Overturning curve of a pulse (thesis Fig. 8, 33, 40): `rocking oc --help`.
+    #[command(disable_help_flag = true)]
+    Oc {
+        #[arg(trailing_var_arg = true, allow_hyphen_values = true)]
+        args: Vec<String>,
+    },
+    /// Overturning acceleration spectrum of a record (Fig. 36, 37, 43): `rocking oas --help`.
+    #[command(disable_help_flag = true)]
+    Oas {
+        #[arg(trailing_var_arg = true, allow_hyphen_values = true)]
+        args: Vec<String>,
+    },
+    /// Replacement impulse duration t_1, t_1', beta of records (Eq. 20, 28): `rocking t1 --help`.
+    #[command(disable_help_flag = true)]
+    T1 {
+        #[arg(trailing_var_arg = true, allow_hyphen_values = true)]
+        args: Vec<String>,
+    },
+    /// Pier width (Eq. 23, 24) and the Eq. 31 check: `rocking design --help`.
+    #[command(disable_help_flag = true)]
+    Design {
+        #[arg(trailing_var_arg = true, allow_hyphen_values = true)]
+        args: Vec<String>,
+    },
     /// Benchmarks of the driver.
     Bench {
         #[command(subcommand)]
@@ -66,10 +94,27 @@ enum Bench {
     },
 }
 
+fn wants_help(args: &[String]) -> bool {
+    args.iter().any(|a| a == "--help" || a == "-h")
+}
+
+fn usage(text: &str) -> ExitCode {
+    println!("{text}");
+    ExitCode::SUCCESS
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Thesis => return thesis::run(),
+        Command::Oc { args } if wants_help(&args) => return usage(spectra_cmd::OC_USAGE),
+        Command::Oas { args } if wants_help(&args) => return usage(spectra_cmd::OAS_USAGE),
+        Command::T1 { args } if wants_help(&args) => return usage(spectra_cmd::T1_USAGE),
+        Command::Design { args } if wants_help(&args) => return usage(design_cmd::DESIGN_USAGE),
+        Command::Oc { args } => return spectra_cmd::run_oc(&args),
+        Command::Oas { args } => return spectra_cmd::run_oas(&args),
+        Command::T1 { args } => return spectra_cmd::run_t1(&args),
+        Command::Design { args } => return design_cmd::run_design(&args),
         Command::Simulate { scene, out, plot } => simulate::run(&scene, &out, plot.as_deref()),
         Command::Bench {
             bench:
