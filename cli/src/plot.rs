@@ -368,7 +368,12 @@ impl Chart {
 pub fn svg_to_png(svg: &str) -> Result<Vec<u8>, String> {
     use resvg::{tiny_skia, usvg};
     let mut opt = usvg::Options::default();
-    opt.fontdb_mut().load_system_fonts();
+    let fonts = opt.fontdb_mut();
+    fonts.load_system_fonts();
+    // Generic families map to fonts that Debian has (fontdb's defaults are Windows names).
+    fonts.set_sans_serif_family("DejaVu Sans");
+    fonts.set_serif_family("DejaVu Serif");
+    fonts.set_monospace_family("DejaVu Sans Mono");
     let tree =
         usvg::Tree::from_str(svg, &opt).map_err(|e| format!("cannot render the plot: {e}"))?;
     let size = tree.size().to_int_size();

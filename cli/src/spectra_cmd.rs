@@ -23,13 +23,13 @@ pub const OC_USAGE: &str =
     "usage: rocking oc [--shape half-sine|full-sine|three-half-sines|rectangular|triangular|ricker]
           [--blocks 1] [--slenderness 12] [--size R=1] [--impacts 1]
           [--ptp-min 0.1] [--ptp-max 10] [--ptp-n 40] [--level-max 10] [--level-n 40]
-          [--dt-factor 1] [--shard i/n] [--json] [--svg FILE]
+          [--dt-factor 1] [--shard i/n] [--json] [--svg FILE.svg|FILE.png]
   safe/unsafe on a grid of p t_p (log) x a_p/a_p,min (linear, from 1); CSV (default) or JSON";
 
 pub const OAS_USAGE: &str =
     "usage: rocking oas RECORD [--slenderness 12] [--levels 80] [--sizes 120]
           [--blocks 1] [--impacts 1] [--bisection] [--dt-factor 1] [--hermite] [--rk4]
-          [--shard i/n] [--json] [--svg PREFIX]
+          [--shard i/n] [--json] [--svg PREFIX] [--png]
        rocking oas --merge SHARD.json...
   OAS of a record (thesis grid by default); JSON (default) or CSV with --csv";
 
@@ -240,7 +240,7 @@ fn oc(args: &[String]) -> Result<(), String> {
                 },
             ],
         };
-        std::fs::write(path, plot.to_svg()).map_err(|e| format!("{path}: {e}"))?;
+        save_plot(path, &plot.to_svg())?;
     }
     Ok(())
 }
@@ -345,7 +345,7 @@ pub fn run_oas(args: &[String]) -> ExitCode {
 fn oas(args: &[String]) -> Result<(), String> {
     let a = Args::parse(
         args,
-        &["json", "csv", "bisection", "merge", "hermite", "rk4"],
+        &["json", "csv", "bisection", "merge", "hermite", "rk4", "png"],
     )?;
     let t0 = Instant::now();
     let result = if a.flag("merge") {
@@ -399,12 +399,12 @@ fn oas(args: &[String]) -> Result<(), String> {
         );
     }
     if let Some(prefix) = a.str("svg") {
-        write_oas_svgs(&result, prefix)?;
+        write_oas_svgs(&result, prefix, a.flag("png"))?;
     }
     Ok(())
 }
 
-fn write_oas_svgs(o: &Oas, prefix: &str) -> Result<(), String> {
+fn write_oas_svgs(o: &Oas, prefix: &str, png: bool) -> Result<(), String> {
     let s = o.summary();
     let b = o.boundary();
     let i_cr = o.i_cr();
@@ -497,8 +497,11 @@ fn write_oas_svgs(o: &Oas, prefix: &str) -> Result<(), String> {
         ),
     ];
     for (name, plot) in plots {
-        let path = format!("{prefix}-{name}.svg");
-        std::fs::write(&path, plot.to_svg()).map_err(|e| format!("{path}: {e}"))?;
+        let svg = plot.to_svg();
+        save_plot(&format!("{prefix}-{name}.svg"), &svg)?;
+        if png {
+            save_plot(&format!("{prefix}-{name}.png"), &svg)?;
+        }
     }
     Ok(())
 }
@@ -577,4 +580,14 @@ fn t1(args: &[String]) -> Result<(), String> {
         }
     }
     Ok(())
+}
+
+/// Writes a chart as SVG, or as PNG when the path ends in `.png` (rendered with resvg).
+fn save_plot(path: &str, svg: &str) -> Result<(), String> {
+    let p = std::path::Path::new(path);
+    if path.to_ascii_lowercase().ends_with(".png") {
+        crate::output::write_atomic(p, &crate::plot::svg_to_png(svg)?)
+    } else {
+        crate::output::write_atomic(p, svg.as_bytes())
+    }
 }
