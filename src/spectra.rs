@@ -688,7 +688,9 @@ pub fn record_overturns(
         motion.end_time()
     };
     let tail = options.sweep.tail / mono.p;
-    let sim = options.sweep.simulation(dt, end + tail);
+    let mut sim = options.sweep.simulation(dt, end + tail);
+    // After the last exceedance a closed column can never lift off again: stop there (exact).
+    sim.quiet_after = Some(t_last - t0);
     Ok(overturns(&column, &motion, &sim)?)
 }
 

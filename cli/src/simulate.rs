@@ -164,6 +164,7 @@ fn stop_text(s: &StopReason) -> String {
         StopReason::Sliding { interface } => format!("sliding at interface {interface}"),
         StopReason::Tension { interface } => format!("tension at interface {interface}"),
         StopReason::TooManyEvents => "too many events (cap reached)".into(),
+        StopReason::AtRest => "at rest for good (the ground can no longer open the column)".into(),
     }
 }
 
@@ -175,6 +176,7 @@ fn stop_json(s: &StopReason) -> (&'static str, Option<usize>) {
         StopReason::Sliding { interface } => ("sliding", Some(interface)),
         StopReason::Tension { interface } => ("tension", Some(interface)),
         StopReason::TooManyEvents => ("too_many_events", None),
+        StopReason::AtRest => ("at_rest", None),
     }
 }
 

@@ -393,6 +393,9 @@ impl<'a> Engine<'a> {
             if self.n_events as f64 > opts.max_events_per_second * self.t.max(1.0) {
                 return self.stop(StopReason::TooManyEvents);
             }
+            if self.open.is_empty() && opts.quiet_after.is_some_and(|q| self.t >= q) {
+                return self.stop(StopReason::AtRest);
+            }
             let mut h = if remaining < 1.5 * dt && remaining > dt {
                 0.5 * remaining
             } else {

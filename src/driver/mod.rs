@@ -174,6 +174,12 @@ pub struct SimulationOptions {
     /// Settling: ... or when the time since the previous impact at the same interface is below
     /// this (s). `None`: four time steps.
     pub settle_interval: Option<f64>,
+    /// After this time the ground acceleration stays below the column's static uplift
+    /// acceleration for good (e.g. the last exceedance of a record). A column that is closed
+    /// then — straight and moving with the ground — can never open again, so the run stops
+    /// there with [`StopReason::AtRest`]: exact, and it saves the weak codas of long records in
+    /// spectra sweeps. `None`: run the whole duration.
+    pub quiet_after: Option<f64>,
 }
 
 impl Default for SimulationOptions {
@@ -193,6 +199,7 @@ impl Default for SimulationOptions {
             initial_angles: None,
             settle_energy_fraction: 1e-6,
             settle_interval: None,
+            quiet_after: None,
         }
     }
 }
@@ -263,6 +270,8 @@ pub enum StopReason {
     },
     /// More events than `max_events_per_second` allows.
     TooManyEvents,
+    /// Closed after [`SimulationOptions::quiet_after`]: the ground can no longer open it.
+    AtRest,
 }
 
 /// Kept states, struct of arrays (`n` interfaces, `2n` DOFs per sample).
