@@ -506,7 +506,7 @@ static void handle_impact(Analysis *A, const State *prev, int k) {
         return;
     record(A, 1, c->t, k);
     if (c->status[k] != 0 &&
-        (rep.kinetic_after < 1e-6 * A->tip_energy || c->t - A->last_impact[k] < 4.0 * 1e-3)) {
+        (rep.kinetic_after < 1e-6 * A->tip_energy || c->t - A->last_impact[k] < 4.0 * A->s->dt)) {
         c->status[k] = 0;
         project(A);
         record(A, 2, c->t, k);
