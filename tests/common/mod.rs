@@ -1,6 +1,8 @@
 //! Shared by the integration tests that compile C against `include/rocking.h` and the cdylib.
 #![allow(dead_code)]
 
+pub mod scenes;
+
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::atomic::{AtomicUsize, Ordering};
