@@ -271,8 +271,13 @@ impl ConeProblem {
     }
 
     /// Gathers `Â_SS` (row-major) into `work` and `b̂_S` into `x`, factors and solves in place.
-    /// Returns `false` if `Â_SS` is not positive definite.
-    pub fn solve_face(&self, set: &[usize], work: &mut Vec<f64>, x: &mut Vec<f64>) -> bool {
+    /// Fails with [`ErrorKind::NotPositiveDefinite`] if `Â_SS` is not positive definite.
+    pub fn solve_face(
+        &self,
+        set: &[usize],
+        work: &mut Vec<f64>,
+        x: &mut Vec<f64>,
+    ) -> Result<(), RockingError> {
         let k = set.len();
         let p = self.p();
         work.clear();
@@ -284,10 +289,13 @@ impl ConeProblem {
             x.push(self.b[r]);
         }
         if !crate::cholesky::factor(work, k) {
-            return false;
+            return Err(RockingError::new(
+                ErrorKind::NotPositiveDefinite,
+                "the mass matrix of a configuration is not positive definite",
+            ));
         }
         crate::cholesky::solve(work, k, x);
-        true
+        Ok(())
     }
 
     /// Whether the bounded generator `i` with scaled coefficient `v` opens admissibly (SPEC §2–3:

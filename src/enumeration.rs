@@ -5,7 +5,7 @@
 //! that the projection solver is tested against.
 
 use crate::cone::{ConeProblem, ConeSolution, Solver, TIE_GAP};
-use crate::error::{ErrorKind, RockingError};
+use crate::error::RockingError;
 
 /// Enumerates every configuration of the problem.
 pub(crate) fn solve(problem: &ConeProblem) -> Result<ConeSolution, RockingError> {
@@ -41,12 +41,7 @@ pub(crate) fn solve(problem: &ConeProblem) -> Result<ConeSolution, RockingError>
             }
         }
         examined += 1;
-        if !problem.solve_face(&set, &mut work, &mut x) {
-            return Err(RockingError::new(
-                ErrorKind::NotPositiveDefinite,
-                "the mass matrix of a configuration is not positive definite",
-            ));
-        }
+        problem.solve_face(&set, &mut work, &mut x)?;
         let largest = problem.largest_rate(&set, &x);
         let ok = set
             .iter()

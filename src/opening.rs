@@ -136,12 +136,7 @@ pub fn check_configuration(
     let mut y_hat = vec![0.0; problem.p()];
     if !free.is_empty() {
         let (mut work, mut x) = (Vec::new(), Vec::new());
-        if !problem.solve_face(&free, &mut work, &mut x) {
-            return Err(RockingError::new(
-                ErrorKind::NotPositiveDefinite,
-                "the mass matrix of the current configuration is not positive definite",
-            ));
-        }
+        problem.solve_face(&free, &mut work, &mut x)?;
         for (&i, &v) in free.iter().zip(&x) {
             y_hat[i] = v;
         }

@@ -42,16 +42,8 @@ fn relaxed(
             ws.in_set[i] = true;
         }
     }
-    let not_pd = || {
-        RockingError::new(
-            ErrorKind::NotPositiveDefinite,
-            "the mass matrix of a configuration is not positive definite",
-        )
-    };
     if !ws.set.is_empty() {
-        if !problem.solve_face(&ws.set, &mut ws.factor, &mut ws.z) {
-            return Err(not_pd());
-        }
+        problem.solve_face(&ws.set, &mut ws.factor, &mut ws.z)?;
         for (&i, &v) in ws.set.iter().zip(&ws.z) {
             y[i] = v;
         }
@@ -85,9 +77,7 @@ fn relaxed(
                     format!("active-set iterations exceeded {max_iterations}"),
                 ));
             }
-            if !problem.solve_face(&ws.set, &mut ws.factor, &mut ws.z) {
-                return Err(not_pd());
-            }
+            problem.solve_face(&ws.set, &mut ws.factor, &mut ws.z)?;
             let feasible = ws
                 .set
                 .iter()
@@ -138,9 +128,7 @@ fn relaxed(
     // Final face solve for an exact face optimum and its condition.
     let mut condition = 1.0;
     if !ws.set.is_empty() {
-        if !problem.solve_face(&ws.set, &mut ws.factor, &mut ws.z) {
-            return Err(not_pd());
-        }
+        problem.solve_face(&ws.set, &mut ws.factor, &mut ws.z)?;
         condition = crate::cholesky::condition_estimate(&ws.factor, ws.set.len());
         y.iter_mut().for_each(|v| *v = 0.0);
         for (&i, &v) in ws.set.iter().zip(&ws.z) {
@@ -254,12 +242,7 @@ fn polish(
         if ws.set.is_empty() {
             return Ok((y, 1.0));
         }
-        if !problem.solve_face(&ws.set, &mut ws.factor, &mut ws.z) {
-            return Err(RockingError::new(
-                ErrorKind::NotPositiveDefinite,
-                "the mass matrix of a configuration is not positive definite",
-            ));
-        }
+        problem.solve_face(&ws.set, &mut ws.factor, &mut ws.z)?;
         condition = crate::cholesky::condition_estimate(&ws.factor, ws.set.len());
         for (&i, &v) in ws.set.iter().zip(&ws.z) {
             y[i] = if problem.gens[i].bounded {
