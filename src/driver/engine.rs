@@ -486,23 +486,7 @@ impl<'a> Engine<'a> {
                 self.v0[i] = self.rates[d];
                 self.a0[i] = self.acc[d];
             }
-            let ok = self.stepper.step(
-                opts.integrator,
-                &mut self.dynm,
-                &self.open,
-                &self.statuses,
-                self.motion,
-                t0,
-                h,
-                self.ag,
-                ag1,
-                &self.x0[..k],
-                &self.v0[..k],
-                &self.a0[..k],
-            );
-            if !ok {
-                return Err(not_positive_definite());
-            }
+            self.advance(t0, h, ag1, k)?;
             self.phi1.copy_from_slice(&self.phi);
             self.rates1.copy_from_slice(&self.rates);
             for (i, &d) in self.open.iter().enumerate() {
@@ -662,6 +646,31 @@ impl<'a> Engine<'a> {
 
     /// Moves the state to the fraction `s` of the step just taken (which starts at the current
     /// state): linear interpolation (thesis) or re-integration over `s h` (Hermite).
+    /// One step of the integrator from the start-of-step state `x0, v0, a0` (`k` open DOFs)
+    /// over `h`, the ground acceleration going from the current one to `ag1`; the result is in
+    /// the stepper's `x1, v1, a1`.
+    fn advance(&mut self, t0: f64, h: f64, ag1: f64, k: usize) -> Result<(), DriverError> {
+        let ok = self.stepper.step(
+            self.opts.integrator,
+            &mut self.dynm,
+            &self.open,
+            &self.statuses,
+            self.motion,
+            t0,
+            h,
+            self.ag,
+            ag1,
+            &self.x0[..k],
+            &self.v0[..k],
+            &self.a0[..k],
+        );
+        if ok {
+            Ok(())
+        } else {
+            Err(not_positive_definite())
+        }
+    }
+
     fn move_to_event(&mut self, t0: f64, h: f64, s: f64) -> Result<(), DriverError> {
         let te = t0 + s * h;
         let ag_e = self.motion.acceleration(te);
@@ -675,23 +684,7 @@ impl<'a> Engine<'a> {
             EventLocator::Hermite => {
                 if s > 0.0 {
                     let k = self.open.len();
-                    let ok = self.stepper.step(
-                        self.opts.integrator,
-                        &mut self.dynm,
-                        &self.open,
-                        &self.statuses,
-                        self.motion,
-                        t0,
-                        s * h,
-                        self.ag,
-                        ag_e,
-                        &self.x0[..k],
-                        &self.v0[..k],
-                        &self.a0[..k],
-                    );
-                    if !ok {
-                        return Err(not_positive_definite());
-                    }
+                    self.advance(t0, s * h, ag_e, k)?;
                     for (i, &d) in self.open.iter().enumerate() {
                         self.phi[d] = self.stepper.x1[i];
                         self.rates[d] = self.stepper.v1[i];
