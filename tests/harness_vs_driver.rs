@@ -30,19 +30,9 @@ fn harness_agrees_with_the_driver() {
         let h = harness
             .get(name)
             .unwrap_or_else(|| panic!("scene {name} missing:\n{out}"));
-        let d = driver_scene(name, 1e-3);
-        let max_dt = h
-            .events
-            .iter()
-            .zip(&d.events)
-            .map(|(x, y)| (x.t - y.t).abs())
-            .fold(0.0_f64, f64::max);
-        let max_peak = h
-            .peak
-            .iter()
-            .zip(&d.peak)
-            .map(|(x, y)| (x - y).abs() / y.abs().max(1e-12))
-            .fold(0.0_f64, f64::max);
+        let d = driver_scene(name, dt);
+        let max_dt = h.max_event_time_diff(&d);
+        let max_peak = h.max_peak_rel_diff(&d);
         eprintln!(
             "scene {name}: harness {} events, driver {}; max |Δt| = {:.3e} s; peak rotations \
              harness {:?} driver {:?} (max rel. diff {:.2e}); stop {} at {:.6} / {} at {:.6}",

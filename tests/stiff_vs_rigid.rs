@@ -42,18 +42,8 @@ fn stiff_recipe_converges_to_the_rigid_driver() {
             let h = runs
                 .get(&key)
                 .unwrap_or_else(|| panic!("{key} missing:\n{out}"));
-            let max_dt = h
-                .events
-                .iter()
-                .zip(&d.events)
-                .map(|(x, y)| (x.t - y.t).abs())
-                .fold(0.0_f64, f64::max);
-            let max_peak = h
-                .peak
-                .iter()
-                .zip(&d.peak)
-                .map(|(x, y)| (x - y).abs() / y.abs().max(1e-12))
-                .fold(0.0_f64, f64::max);
+            let max_dt = h.max_event_time_diff(&d);
+            let max_peak = h.max_peak_rel_diff(&d);
             eprintln!(
                 "{key}: {} events (driver {}), max |dt| = {max_dt:.3e} s, peak rel. diff \
                  {max_peak:.3e}, stop {} / {}",

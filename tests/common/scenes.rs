@@ -27,6 +27,26 @@ pub struct SceneResult {
     pub peak: Vec<f64>,
 }
 
+impl SceneResult {
+    /// Largest difference of the times of corresponding events (pairs in order).
+    pub fn max_event_time_diff(&self, other: &SceneResult) -> f64 {
+        self.events
+            .iter()
+            .zip(&other.events)
+            .map(|(x, y)| (x.t - y.t).abs())
+            .fold(0.0_f64, f64::max)
+    }
+
+    /// Largest relative difference of the peak block rotations, relative to `reference`'s.
+    pub fn max_peak_rel_diff(&self, reference: &SceneResult) -> f64 {
+        self.peak
+            .iter()
+            .zip(&reference.peak)
+            .map(|(x, y)| (x - y).abs() / y.abs().max(1e-12))
+            .fold(0.0_f64, f64::max)
+    }
+}
+
 pub fn field<'a>(line: &'a str, key: &str) -> &'a str {
     line.split_whitespace()
         .find_map(|w| w.strip_prefix(key).and_then(|r| r.strip_prefix('=')))
