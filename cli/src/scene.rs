@@ -137,9 +137,10 @@ pub struct SceneSpec {
     pub impacts: u32,
     pub duration: f64,
     pub dt: f64,
+    /// "wilson" (default), "newmark", "rk4", "dop853", or `{"type": "wilson", "theta": 1.4}`.
     #[serde(default)]
     pub integrator: Option<IntegratorSpec>,
-    /// "linear" (thesis, default) or "hermite".
+    /// "linear" (thesis, default) or "hermite" (refined by re-integration with "dop853").
     #[serde(default)]
     pub locator: Option<String>,
     /// "auto" (default), "enumerate" or "projection".
@@ -232,10 +233,11 @@ pub fn build(spec: SceneSpec, base: &Path, name: &str) -> Result<Scene, SceneErr
             "wilson" | "wilson_theta" => Integrator::default(),
             "newmark" => Integrator::Newmark,
             "rk4" => Integrator::Rk4,
+            "dop853" => Integrator::Dop853,
             other => {
                 return Err(err(
                     "integrator",
-                    format!("unknown integrator {other:?} (wilson, newmark, rk4)"),
+                    format!("unknown integrator {other:?} (wilson, newmark, rk4, dop853)"),
                 ))
             }
         },
