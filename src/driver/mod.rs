@@ -127,13 +127,14 @@ pub enum EventLocator {
     /// then re-integrated from the start of the step.
     ///
     /// With [`Integrator::Dop853`] (whose error is far below the interpolation's `O(dt⁴)`) the
-    /// Hermite time is then refined on the re-integrated solution itself, i.e. on the event
-    /// function of one integrator step of length `s dt` from the start of the step: an impact
-    /// by Newton's method on the angle (its derivative is the integrated rate), until the
-    /// correction is below `1e-9` s and its second-order remainder below `1e-15` s, the last
-    /// correction applied to the state by a second-order Taylor shift; an opening by Illinois
-    /// on the largest reaction margin, in a bracket grown from `1e-7` of the step around the
-    /// Hermite time, down to `1e-14` s. Usually one or two extra steps per impact.
+    /// event time is then refined on the re-integrated solution itself, i.e. on the event
+    /// function of one integrator step of length `s dt` from the start of the step. An impact:
+    /// the Hermite time improved on the quintic Hermite interpolant of the step (which also uses
+    /// the accelerations at both ends), then Newton's method on the angle (its derivative is the
+    /// integrated rate) until the correction is below `1e-8` s and its second-order remainder
+    /// below `1e-15` s, the last correction applied to the state by a second-order Taylor shift:
+    /// one or two extra steps per impact. An opening: Illinois on the largest reaction margin, in
+    /// a bracket grown from `1e-7` of the step around the Hermite time, down to `1e-14` s.
     Hermite,
 }
 
