@@ -490,6 +490,22 @@ mod tests {
         assert_eq!(s.column.n_interfaces(), 1);
         assert_eq!(s.options.model.n_impacts, 1);
         assert!((s.excitation.peak() - 5.0).abs() < 1e-12);
+        for (name, integrator) in [
+            ("wilson", Integrator::default()),
+            ("newmark", Integrator::Newmark),
+            ("rk4", Integrator::Rk4),
+            ("dop853", Integrator::Dop853),
+        ] {
+            let text = GOOD.replace(
+                "\"duration\": 1.0,",
+                &format!(
+                    "\"duration\": 1.0, \"integrator\": \"{name}\", \"locator\": \"hermite\","
+                ),
+            );
+            let s = parse(&text).unwrap();
+            assert_eq!(s.options.integrator, integrator);
+            assert_eq!(s.options.locator, EventLocator::Hermite);
+        }
     }
 
     #[test]
