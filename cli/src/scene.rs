@@ -55,7 +55,7 @@ pub enum ExcitationSpec {
     Rectangular { amplitude: f64, duration: f64 },
     /// Symmetric triangle peaking at `duration / 2`.
     Triangular { amplitude: f64, duration: f64 },
-    /// Ricker wavelet of peak `amplitude` and central `frequency` [Hz].
+    /// Ricker wavelet of peak `amplitude` and central `frequency` (Hz).
     Ricker { amplitude: f64, frequency: f64 },
     /// Mavroeidis–Papageorgiou (2003) pulse of peak acceleration `amplitude`.
     MavroeidisPapageorgiou {

@@ -98,7 +98,11 @@ pub enum Integrator {
     /// motion per step, the ground acceleration at each stage's time. With
     /// [`EventLocator::Hermite`] its events are refined by re-integration to the method's
     /// accuracy (see there). For accurate runs at large steps (e.g. `dt` = 10–50 ms on a
-    /// rocking block); its stability bound is `dt ω ≲ 3` on the fastest oscillation.
+    /// rocking block); its stability bound is `dt ω ≲ 3` on the fastest oscillation. The order
+    /// needs a ground motion smooth within each step: a sampled record (linear between samples)
+    /// has a kink at every sample, and a step across one is only second-order accurate there.
+    /// At large steps set [`SimulationOptions::settle_interval`] in seconds: its default, four
+    /// steps, would settle a block whose impacts are that close.
     Dop853,
 }
 
