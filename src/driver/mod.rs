@@ -197,7 +197,9 @@ pub struct SimulationOptions {
     /// factor 0.9 leaves room for the integration error, so the verdict is the one the full run
     /// would give. Needs [`GroundMotion::remaining_impulse`]; ignored for columns of more than
     /// one block (thesis Eq. 6 does not conserve energy there) and with
-    /// `continue_until_fallen`. Checked every 16 steps.
+    /// `continue_until_fallen`. Checked every 16 steps. It proves only that the block will not
+    /// tip: a sliding or tension stop that the rest of the run would have met is not reported
+    /// (sweeps use infinite friction).
     pub stop_when_safe: bool,
 }
 
