@@ -157,6 +157,38 @@ impl Record {
         self.samples.len().saturating_sub(1) as f64 * self.dt
     }
 
+    /// `S[i] = ∫_{t_i}^{end} |a(t)| dt` of the linearly interpolated record (m/s), one entry per
+    /// sample (the last is 0): the tail impulses that [`Record::impulse_after`] reads.
+    pub fn impulse_table(&self) -> Vec<f64> {
+        let n = self.samples.len();
+        let mut table = vec![0.0; n];
+        for i in (0..n.saturating_sub(1)).rev() {
+            table[i] = table[i + 1] + abs_integral(self.samples[i], self.samples[i + 1], self.dt);
+        }
+        table
+    }
+
+    /// `∫_t^end |a(s)| ds` (m/s) of the linearly interpolated record, from the `table` of
+    /// [`Record::impulse_table`] (0 after the end, the whole record's before the start).
+    pub fn impulse_after(&self, table: &[f64], t: f64) -> f64 {
+        let n = self.samples.len().min(table.len());
+        if n == 0 {
+            return 0.0;
+        }
+        let x = t / self.dt;
+        if x.is_nan() || x <= 0.0 {
+            return table[0];
+        }
+        if x >= (n - 1) as f64 {
+            return 0.0;
+        }
+        let i = x as usize;
+        let rest = (i + 1) as f64 - x;
+        let b = self.samples[i + 1];
+        let a = b + rest * (self.samples[i] - b);
+        table[i + 1] + abs_integral(a, b, rest * self.dt)
+    }
+
     /// Peak ground acceleration `max |a|` \[m/s²\] (0 for an empty record). With linear
     /// interpolation this is also the peak of [`Record::acceleration`] over time.
     pub fn pga(&self) -> f64 {
@@ -383,6 +415,15 @@ fn check_at2_units(record: &str, line: &str) -> Result<(), RecordError> {
         }
     }
     Ok(())
+}
+
+/// `∫_0^h |a + (b − a) s/h| ds`: a trapezoid, or two triangles when the segment crosses zero.
+fn abs_integral(a: f64, b: f64, h: f64) -> f64 {
+    if a * b >= 0.0 {
+        0.5 * h * (a.abs() + b.abs())
+    } else {
+        0.5 * h * (a * a + b * b) / (a.abs() + b.abs())
+    }
 }
 
 /// Reads a PEER NGA `.AT2` file (see [`parse_at2`]); the record is named after the file stem.
@@ -852,6 +893,32 @@ NPTS=     7, DT=   .0100 SEC
   1.0000000E-01  -2.0000000E-01  3.0000000E-01  0.0000000E+00  -5.0000000E-02
   2.5000000E-02   0.0
 ";
+
+    /// The tail impulse of the interpolated record against a fine midpoint quadrature of
+    /// `|a(t)|` (segments that cross zero included), at sample times and between them.
+    #[test]
+    fn impulse_after_is_the_integral_of_the_absolute_acceleration() {
+        let r = Record {
+            name: "r".into(),
+            dt: 0.01,
+            samples: vec![1.0, -2.0, 3.0, 0.0, -0.5, 0.25, 0.0],
+        };
+        let table = r.impulse_table();
+        let quadrature = |t: f64| {
+            let n = 200_000;
+            let h = (r.duration() - t) / n as f64;
+            (0..n)
+                .map(|i| r.acceleration(t + (i as f64 + 0.5) * h).abs() * h)
+                .sum::<f64>()
+        };
+        for t in [0.0, 0.003, 0.01, 0.0149, 0.027, 0.04, 0.0555] {
+            let got = r.impulse_after(&table, t);
+            assert!((got - quadrature(t)).abs() < 1e-8, "t = {t}: {got}");
+        }
+        assert_eq!(r.impulse_after(&table, -1.0), table[0]);
+        assert_eq!(r.impulse_after(&table, 0.06), 0.0);
+        assert_eq!(r.impulse_after(&table, 1.0), 0.0);
+    }
 
     fn parse_err(text: &str) -> RecordError {
         parse_at2(text, "t").expect_err("must fail")

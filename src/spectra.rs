@@ -268,12 +268,15 @@ pub struct SweepOptions {
 
 impl Default for SweepOptions {
     /// Driver defaults (Wilson θ = 1.4, linear event location, Housner impacts, static tipping),
-    /// except friction: infinite (the thesis does not check sliding).
+    /// except friction: infinite (the thesis does not check sliding), and
+    /// [`SimulationOptions::stop_when_safe`]: a single block that the rest of a record provably
+    /// cannot tip stops early (same verdicts: `oas_energy_bound_changes_nothing` in the tests).
     fn default() -> SweepOptions {
         SweepOptions {
             simulation: SimulationOptions {
                 friction: f64::INFINITY,
                 record: Recording::NONE,
+                stop_when_safe: true,
                 ..SimulationOptions::default()
             },
             time_step: TimeStep::default(),
@@ -311,6 +314,8 @@ struct ScaledRecord<'a> {
     record: &'a Record,
     factor: f64,
     t0: f64,
+    /// [`Record::impulse_table`] of `record`.
+    impulses: &'a [f64],
 }
 
 impl GroundMotion for ScaledRecord<'_> {
@@ -319,6 +324,9 @@ impl GroundMotion for ScaledRecord<'_> {
     }
     fn end_time(&self) -> f64 {
         (self.record.duration() - self.t0).max(0.0)
+    }
+    fn remaining_impulse(&self, t: f64) -> Option<f64> {
+        Some(self.factor.abs() * self.record.impulse_after(self.impulses, t + self.t0))
     }
 }
 
@@ -668,30 +676,60 @@ pub fn record_overturns(
     size: f64,
     options: &OasOptions,
 ) -> Result<bool, SpectraError> {
-    let column = column_of_size(size, options.slenderness, options.n_blocks)?;
-    let g = options.sweep.simulation.gravity;
-    let mono = Monolith::of(&column, g);
-    let pga = record.pga();
-    if pga.is_nan() || pga <= 0.0 {
-        return Err(invalid("record", format!("`{}` has zero PGA", record.name)));
+    PreparedRecord::new(record)?.overturns(level, size, options)
+}
+
+/// A record with what every simulation of a sweep over it reads: its PGA and its tail
+/// impulses ([`Record::impulse_table`]), computed once.
+struct PreparedRecord<'a> {
+    record: &'a Record,
+    pga: f64,
+    impulses: Vec<f64>,
+}
+
+impl<'a> PreparedRecord<'a> {
+    fn new(record: &'a Record) -> Result<PreparedRecord<'a>, SpectraError> {
+        let pga = record.pga();
+        if pga.is_nan() || pga <= 0.0 {
+            return Err(invalid("record", format!("`{}` has zero PGA", record.name)));
+        }
+        Ok(PreparedRecord {
+            record,
+            pga,
+            impulses: record.impulse_table(),
+        })
     }
-    let factor = level * mono.a_p_min / pga;
-    let Some((t0, t_last)) = exceedance_window(record, factor, uplift_acceleration(&column, g))
-    else {
-        return Ok(false);
-    };
-    let motion = ScaledRecord { record, factor, t0 };
-    let dt = options.sweep.time_step.dt(Some(record.dt), None, mono.p);
-    let end = if options.sweep.cut_after_last_exceedance {
-        t_last - t0
-    } else {
-        motion.end_time()
-    };
-    let tail = options.sweep.tail / mono.p;
-    let mut sim = options.sweep.simulation(dt, end + tail);
-    // After the last exceedance a closed column can never lift off again: stop there (exact).
-    sim.quiet_after = Some(t_last - t0);
-    Ok(overturns(&column, &motion, &sim)?)
+
+    /// [`record_overturns`].
+    fn overturns(&self, level: f64, size: f64, options: &OasOptions) -> Result<bool, SpectraError> {
+        let record = self.record;
+        let column = column_of_size(size, options.slenderness, options.n_blocks)?;
+        let g = options.sweep.simulation.gravity;
+        let mono = Monolith::of(&column, g);
+        let factor = level * mono.a_p_min / self.pga;
+        let Some((t0, t_last)) = exceedance_window(record, factor, uplift_acceleration(&column, g))
+        else {
+            return Ok(false);
+        };
+        let motion = ScaledRecord {
+            record,
+            factor,
+            t0,
+            impulses: &self.impulses,
+        };
+        let dt = options.sweep.time_step.dt(Some(record.dt), None, mono.p);
+        let end = if options.sweep.cut_after_last_exceedance {
+            t_last - t0
+        } else {
+            motion.end_time()
+        };
+        let tail = options.sweep.tail / mono.p;
+        let mut sim = options.sweep.simulation(dt, end + tail);
+        // After the last exceedance a closed column can never lift off again: stop there
+        // (exact).
+        sim.quiet_after = Some(t_last - t0);
+        Ok(overturns(&column, &motion, &sim)?)
+    }
 }
 
 /// One level of an OAS.
@@ -945,7 +983,7 @@ impl Oas {
 }
 
 fn search_level(
-    record: &Record,
+    record: &PreparedRecord<'_>,
     level: f64,
     options: &OasOptions,
 ) -> Result<OasLevel, SpectraError> {
@@ -953,7 +991,7 @@ fn search_level(
     let mut sims = 0;
     let mut test = |i: usize| {
         sims += 1;
-        record_overturns(record, level, sizes[i], options)
+        record.overturns(level, sizes[i], options)
     };
     let largest_unsafe = match options.search {
         SizeSearch::Scan => {
@@ -1007,8 +1045,9 @@ pub fn oas(
     if record.pga().is_nan() || record.pga() <= 0.0 {
         return Err(invalid("record", format!("`{}` has zero PGA", record.name)));
     }
+    let prepared = PreparedRecord::new(record)?;
     let levels = map_indexed(options.levels.len(), |k| {
-        let r = search_level(record, options.levels[k], options);
+        let r = search_level(&prepared, options.levels[k], options);
         if let Some(p) = progress {
             p();
         }

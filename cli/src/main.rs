@@ -13,6 +13,7 @@ mod output;
 mod plot;
 mod scene;
 mod simulate;
+mod spectra_bench;
 mod spectra_cmd;
 mod spectra_svg;
 mod thesis;
@@ -67,7 +68,7 @@ enum Command {
         #[arg(trailing_var_arg = true, allow_hyphen_values = true)]
         args: Vec<String>,
     },
-    /// Benchmarks of the driver.
+    /// Benchmarks: the driver's accuracy against run time, the spectra's wall time.
     Bench {
         #[command(subcommand)]
         bench: Bench,
@@ -91,6 +92,21 @@ enum Bench {
         /// Results of the scipy peer (bench/peer/results.json) to compare with.
         #[arg(long)]
         peer: Option<PathBuf>,
+    },
+    /// Wall time of the OAS of records with the thesis's grid (target: 5 s per record).
+    Spectra {
+        /// Records (.AT2 or plain text); none: the bundled synthetic record.
+        records: Vec<PathBuf>,
+        /// Run each record again with every simulation run to its end (no energy-bound stop):
+        /// the speed ratio, and a check that both spectra are identical.
+        #[arg(long)]
+        compare: bool,
+        /// Also write the Markdown report to this file.
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Threads (default: every core).
+        #[arg(long)]
+        threads: Option<usize>,
     },
 }
 
@@ -129,6 +145,20 @@ fn main() -> ExitCode {
             plot,
             quick,
             peer,
+        }),
+        Command::Bench {
+            bench:
+                Bench::Spectra {
+                    records,
+                    compare,
+                    out,
+                    threads,
+                },
+        } => spectra_bench::run(&spectra_bench::SpectraBenchArgs {
+            records,
+            compare,
+            out,
+            threads,
         }),
     };
     match result {

@@ -165,6 +165,9 @@ fn stop_text(s: &StopReason) -> String {
         StopReason::Tension { interface } => format!("tension at interface {interface}"),
         StopReason::TooManyEvents => "too many events (cap reached)".into(),
         StopReason::AtRest => "at rest for good (the ground can no longer open the column)".into(),
+        StopReason::CannotTip => {
+            "safe for good (the rest of the ground motion cannot tip the block)".into()
+        }
     }
 }
 
@@ -177,6 +180,7 @@ fn stop_json(s: &StopReason) -> (&'static str, Option<usize>) {
         StopReason::Tension { interface } => ("tension", Some(interface)),
         StopReason::TooManyEvents => ("too_many_events", None),
         StopReason::AtRest => ("at_rest", None),
+        StopReason::CannotTip => ("cannot_tip", None),
     }
 }
 

@@ -1,6 +1,6 @@
 //! `rocking t1`, `oas --merge`, `design width/check`: JSON outputs with the documented fields.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::Command;
 
 fn rocking(args: &[&str]) -> (bool, String, String) {
@@ -85,4 +85,31 @@ fn design_width_reproduces_the_pier_example() {
     assert!(ok);
     let v: serde_json::Value = serde_json::from_str(&out).unwrap();
     assert_eq!(v["safe"], false);
+}
+
+/// `rocking bench spectra --compare` on the bundled record: one row, the stop changes nothing
+/// (the command fails otherwise), and the report says so.
+#[test]
+fn spectra_bench_compares_with_full_runs() {
+    let out = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("bench_spectra.md");
+    let _ = std::fs::remove_file(&out);
+    let run = Command::new(env!("CARGO_BIN_EXE_rocking"))
+        .args(["bench", "spectra", "--compare", "--out"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let text = std::fs::read_to_string(&out).unwrap();
+    assert_eq!(text, String::from_utf8_lossy(&run.stdout));
+    let row = text
+        .lines()
+        .find(|l| l.starts_with("| synthetic (bundled)"))
+        .expect("a row for the bundled record");
+    assert!(row.ends_with("| yes |"), "{row}");
+    assert!(text.contains("1 record(s): median"));
+    assert!(text.contains("Speed-up of the energy-bound stop"));
 }

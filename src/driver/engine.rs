@@ -14,6 +14,11 @@ use crate::error::{ErrorKind, RockingError};
 use crate::impact::kinetic_energy;
 use crate::{impact_model, opening_model};
 
+/// Share of `√E_tip` the energy bound of [`SimulationOptions::stop_when_safe`] may reach.
+const SAFETY_FACTOR: f64 = 0.9;
+/// Accepted steps between two evaluations of that bound.
+const SAFETY_EVERY: usize = 16;
+
 /// Look-ahead ladder of the opening judgement (SPEC §5 trap (a)), in time steps.
 const LOOK_AHEAD: [f64; 4] = [1e-3, 1e-2, 1e-1, 1.0];
 
@@ -68,6 +73,8 @@ pub(crate) struct Engine<'a> {
     peak: Vec<f64>,
     history: Option<History>,
     steps: usize,
+    /// `(m R / √(2 I_P), 0.9 √E_tip)` of [`SimulationOptions::stop_when_safe`] when it applies.
+    safety_bound: Option<(f64, f64)>,
 }
 
 impl<'a> Engine<'a> {
@@ -87,6 +94,15 @@ impl<'a> Engine<'a> {
             opts.friction,
         );
         let e_tip = dynm.tipping_energy();
+        let safety_bound =
+            (opts.stop_when_safe && n == 1 && !opts.continue_until_fallen).then(|| {
+                let k = dynm
+                    .rigid
+                    .iter()
+                    .map(|r| r.s0 * (r.dx * r.dx + r.dy * r.dy).sqrt() * (0.5 * r.inv_ip).sqrt())
+                    .fold(0.0, f64::max);
+                (k, SAFETY_FACTOR * e_tip.sqrt())
+            });
         Engine {
             motion,
             opts,
@@ -138,6 +154,7 @@ impl<'a> Engine<'a> {
                 }
             }),
             steps: 0,
+            safety_bound,
         }
     }
 
@@ -432,6 +449,9 @@ impl<'a> Engine<'a> {
             if self.open.is_empty() && opts.quiet_after.is_some_and(|q| self.t >= q) {
                 return self.stop(StopReason::AtRest);
             }
+            if self.steps % SAFETY_EVERY == 0 && self.cannot_tip() {
+                return self.stop(StopReason::CannotTip);
+            }
             let mut h = if remaining < 1.5 * dt && remaining > dt {
                 0.5 * remaining
             } else {
@@ -627,6 +647,23 @@ impl<'a> Engine<'a> {
             }
             self.accepted_step();
         }
+    }
+
+    /// The energy bound of [`SimulationOptions::stop_when_safe`] at the current state.
+    fn cannot_tip(&mut self) -> bool {
+        let Some((k, limit)) = self.safety_bound else {
+            return false;
+        };
+        let Some(impulse) = self.motion.remaining_impulse(self.t) else {
+            return false;
+        };
+        let energy = if self.open.is_empty() {
+            0.0
+        } else {
+            let (kin, pot) = self.dynm.energy(&self.open, &self.phi, &self.rates);
+            kin + pot
+        };
+        energy.max(0.0).sqrt() + k * impulse <= limit
     }
 
     fn accepted_step(&mut self) {

@@ -51,6 +51,12 @@ pub trait GroundMotion {
     fn acceleration(&self, t: f64) -> f64;
     /// Time after which the motion is zero (or ends) (s).
     fn end_time(&self) -> f64;
+    /// An upper bound of `∫_t^∞ |a_g(s)| ds` (m/s), the most velocity the ground can still
+    /// impose, or `None` when the motion cannot tell (the default). Used by
+    /// [`SimulationOptions::stop_when_safe`].
+    fn remaining_impulse(&self, _t: f64) -> Option<f64> {
+        None
+    }
 }
 
 /// A closure `t ↦ a_g(t)` with its end time.
@@ -210,6 +216,21 @@ pub struct SimulationOptions {
     /// there with [`StopReason::AtRest`]: exact, and it saves the weak codas of long records in
     /// spectra sweeps. `None`: run the whole duration.
     pub quiet_after: Option<f64>,
+    /// Single block: stop with [`StopReason::CannotTip`] as soon as an energy bound proves that
+    /// the rest of the ground motion cannot tip the block. Rocking about a pivot `P`, the ground
+    /// acceleration's inertial load does the power `−m a_g ẋ_G` with `|ẋ_G| ≤ R |θ̇|` and
+    /// `½ I_P θ̇² ≤ E` (kinetic plus potential energy above rest, which is `≥ 0` while the
+    /// centre of mass is above its rest height), so `d√E/dt ≤ m R |a_g| / √(2 I_P)`; impacts and
+    /// settling only take energy away. Hence if
+    /// `√E(t) + m R / √(2 I_P) · ∫_t^∞ |a_g| ≤ 0.9 √E_tip` (`E_tip`: the energy that lifts the
+    /// centre of mass over the pivot, which static tipping needs), the block can never tip; the
+    /// factor 0.9 leaves room for the integration error, so the verdict is the one the full run
+    /// would give. Needs [`GroundMotion::remaining_impulse`]; ignored for columns of more than
+    /// one block (thesis Eq. 6 does not conserve energy there) and with
+    /// `continue_until_fallen`. Checked every 16 steps. It proves only that the block will not
+    /// tip: a sliding or tension stop that the rest of the run would have met is not reported
+    /// (sweeps use infinite friction).
+    pub stop_when_safe: bool,
 }
 
 impl Default for SimulationOptions {
@@ -230,6 +251,7 @@ impl Default for SimulationOptions {
             settle_energy_fraction: 1e-6,
             settle_interval: None,
             quiet_after: None,
+            stop_when_safe: false,
         }
     }
 }
@@ -302,6 +324,9 @@ pub enum StopReason {
     TooManyEvents,
     /// Closed after [`SimulationOptions::quiet_after`]: the ground can no longer open it.
     AtRest,
+    /// The energy bound of [`SimulationOptions::stop_when_safe`] proved that the rest of the
+    /// ground motion cannot tip the block.
+    CannotTip,
 }
 
 /// Kept states, struct of arrays (`n` interfaces, `2n` DOFs per sample).

@@ -720,3 +720,107 @@ fn dop853_event_sequences_agree_with_rk4() {
         assert!(dt_max < 1e-9, "{name}: {dt_max}");
     }
 }
+
+/// The bundled record scaled by `factor`, with the tail impulses of
+/// [`SimulationOptions::stop_when_safe`].
+struct BundledRecord {
+    record: crate::records::Record,
+    table: Vec<f64>,
+}
+
+impl BundledRecord {
+    fn new(pga: f64) -> BundledRecord {
+        let text = include_str!("../../examples/records/synthetic.AT2");
+        let raw = crate::records::parse_at2(text, "synthetic").unwrap();
+        let record = raw.scaled(pga / raw.pga());
+        let table = record.impulse_table();
+        BundledRecord { record, table }
+    }
+}
+
+impl GroundMotion for BundledRecord {
+    fn acceleration(&self, t: f64) -> f64 {
+        self.record.acceleration(t)
+    }
+    fn end_time(&self) -> f64 {
+        self.record.duration()
+    }
+    fn remaining_impulse(&self, t: f64) -> Option<f64> {
+        Some(self.record.impulse_after(&self.table, t))
+    }
+}
+
+/// The energy bound behind `stop_when_safe`: `√E` grows by at most `m R / √(2 I_P) ∫|a_g|`
+/// between any two states of a whole run (RK4, fine steps), and the bound is not loose by a
+/// factor of two (half the rate is exceeded somewhere).
+#[test]
+fn energy_grows_no_faster_than_the_bound_of_stop_when_safe() {
+    let (b, h, m) = (0.1, 1.0, 100.0);
+    let col = block(b, h);
+    let motion = BundledRecord::new(1.5 * G * b / h);
+    let opts = SimulationOptions {
+        duration: 20.0,
+        dt: 2e-4,
+        integrator: Integrator::Rk4,
+        friction: f64::INFINITY,
+        ..SimulationOptions::default()
+    };
+    let out = simulate(&col, &motion, &opts, None).unwrap();
+    assert!(!out.overturned && out.impacts > 10, "{:?}", out.stop_reason);
+    let r = (b * b + h * h).sqrt();
+    let alpha = (b / h).atan();
+    let i_p = 4.0 / 3.0 * m * r * r;
+    let k = m * r / (2.0 * i_p).sqrt();
+    let hist = out.history.unwrap();
+    let root_energy = |j: usize| {
+        let (theta, omega) = (
+            hist.phi[2 * j] + hist.phi[2 * j + 1],
+            hist.rates[2 * j] + hist.rates[2 * j + 1],
+        );
+        let potential = m * G * (r * (alpha - theta.abs()).cos() - h);
+        (0.5 * i_p * omega * omega + potential).max(0.0).sqrt()
+    };
+    let e_tip = m * G * (r - h);
+    let (mut worst, mut half_exceeded) = (f64::NEG_INFINITY, false);
+    for j in 0..hist.t.len() - 1 {
+        let impulse = motion.record.impulse_after(&motion.table, hist.t[j])
+            - motion.record.impulse_after(&motion.table, hist.t[j + 1]);
+        let rise = root_energy(j + 1) - root_energy(j);
+        worst = worst.max((rise - k * impulse) / e_tip.sqrt());
+        half_exceeded |= rise > 0.5 * k * impulse;
+    }
+    eprintln!("largest excess of the bound over a step: {worst:e} √E_tip");
+    assert!(worst < 1e-6, "bound exceeded by {worst:e} √E_tip");
+    assert!(half_exceeded);
+
+    // With the stop on, the run ends early with the same verdict.
+    let stopped = simulate(
+        &col,
+        &motion,
+        &SimulationOptions {
+            stop_when_safe: true,
+            ..opts.clone()
+        },
+        None,
+    )
+    .unwrap();
+    assert_eq!(stopped.stop_reason, StopReason::CannotTip);
+    assert!(!stopped.overturned && stopped.t_end < 0.9 * out.t_end);
+    // A block that the record tips is never stopped by the bound.
+    let tipped = |stop_when_safe| {
+        let o = SimulationOptions {
+            stop_when_safe,
+            ..opts.clone()
+        };
+        simulate(
+            &block(0.02, 0.2),
+            &BundledRecord::new(4.0 * G * 0.1),
+            &o,
+            None,
+        )
+        .unwrap()
+    };
+    let (a, b2) = (tipped(true), tipped(false));
+    assert!(a.overturned && b2.overturned);
+    assert_eq!(a.t_end, b2.t_end);
+}

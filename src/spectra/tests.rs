@@ -210,3 +210,65 @@ fn t1_converged_in_dt() {
         .fold((f64::INFINITY, 0.0f64), |(a, b), &t| (a.min(t), b.max(t)));
     assert!(hi / lo <= 1.10, "{t1:?}");
 }
+
+/// Verdicts of every point of a grid with and without [`SimulationOptions::stop_when_safe`].
+fn verdicts_with_and_without_energy_bound(record: &Record, grid: &OasOptions) {
+    let mut full = grid.clone();
+    full.sweep.simulation.stop_when_safe = false;
+    assert!(grid.sweep.simulation.stop_when_safe);
+    let mut unsafe_points = 0;
+    for &level in &grid.levels {
+        for &size in &grid.sizes {
+            let bounded = record_overturns(record, level, size, grid).unwrap();
+            let whole = record_overturns(record, level, size, &full).unwrap();
+            assert_eq!(bounded, whole, "{}: level {level}, R = {size}", record.name);
+            unsafe_points += usize::from(whole);
+        }
+    }
+    // Both verdicts occur on the grid, so the comparison means something.
+    assert!(unsafe_points > 0 && unsafe_points < grid.levels.len() * grid.sizes.len());
+}
+
+/// The energy bound that ends runs early (on by default in sweeps) gives the verdict of the
+/// whole run at every point of a grid, not only on the OAS boundary.
+#[test]
+fn oas_energy_bound_changes_nothing() {
+    let record = bundled();
+    let grid = OasOptions {
+        levels: linear_levels(1.0, 10.0, 10),
+        sizes: log_sizes(1000.0, 0.1, 30),
+        ..OasOptions::default()
+    };
+    verdicts_with_and_without_energy_bound(&record, &grid);
+    let mut full = small_grid();
+    full.sweep.simulation.stop_when_safe = false;
+    assert_eq!(
+        oas(&record, &small_grid(), None).unwrap(),
+        oas(&record, &full, None).unwrap()
+    );
+}
+
+/// The same on the two shared records that cost most (0.005 s and 0.0024 s samples), when
+/// `../shared/records` is present.
+#[test]
+fn oas_energy_bound_changes_nothing_on_shared_records() {
+    let shared = std::env::var_os("ROCKING_SHARED")
+        .map(std::path::PathBuf::from)
+        .unwrap_or_else(|| std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared"));
+    let grid = OasOptions {
+        levels: linear_levels(1.0, 10.0, 6),
+        sizes: log_sizes(1000.0, 0.1, 16),
+        ..OasOptions::default()
+    };
+    for file in [
+        "farfield/RSN125_FRIULI_A-TMZ000.AT2",
+        "nearfield_pulse/RSN292_ITALY_A-STU_313.AT2",
+    ] {
+        let path = shared.join("records/fema-p695").join(file);
+        let Ok(record) = crate::records::read_at2(&path) else {
+            println!("skipped: {} is absent", path.display());
+            continue;
+        };
+        verdicts_with_and_without_energy_bound(&record, &grid);
+    }
+}
