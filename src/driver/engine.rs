@@ -814,9 +814,9 @@ impl<'a> Engine<'a> {
     /// rate. Once the correction `Δt` is below `1e-8` s and its own error (`|φ̈ Δt² / φ̇|`, twice
     /// the remainder of the Newton step) below `1e-15` s, it is applied to the state by a
     /// second-order Taylor shift instead of a further step (the shift's error in the rates,
-    /// `Δt²/2` times the jerk, is then of round-off size). Falls back to the Hermite time (the plain locator) for a DOF not moving
-    /// towards zero there or after `MAX_REFINE` iterates. Leaves the state at the returned
-    /// fraction in the stepper.
+    /// `Δt²/2` times the jerk, is then of round-off size). Falls back to the Hermite time (the
+    /// plain locator) for a DOF not moving towards zero there or after `MAX_REFINE` iterates.
+    /// Leaves the state at the returned fraction in the stepper.
     fn refine_impact(&mut self, t0: f64, h: f64, s_est: f64, d: usize) -> Result<f64, DriverError> {
         let i = self.open.iter().position(|&f| f == d).unwrap_or(0);
         let sigma = self.statuses[d % self.n].sign();

@@ -61,8 +61,8 @@ impl Stepper {
 
     /// Advances `(x0, v0, a0)` at `t0` by `h`. `ag0`, `ag1` are the ground accelerations at `t0`
     /// and `t0 + h`. `a0` must be the method's acceleration state (for RK4, DOP853 and Newmark
-    /// the acceleration of the state; Wilson θ carries its own). Returns `false` if a mass matrix was
-    /// not positive definite.
+    /// the acceleration of the state; Wilson θ carries its own). Returns `false` if a mass matrix
+    /// was not positive definite.
     #[allow(clippy::too_many_arguments)]
     pub fn step(
         &mut self,
