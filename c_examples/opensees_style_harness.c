@@ -40,175 +40,36 @@
  * that would slide is not detected here), and the exact velocity terms (this is thesis Eq. 6,
  * M_FF phi''_F = q_F, as BᵀMB / Bᵀp give it).
  *
- * C99, only rocking.h and the C library. */
+ * The column model (mass points, geometry, B, the reduction), the scenes' type, the Newmark and
+ * event pieces, the trial / commit / revert step control (transient) and the CHECK lines are in
+ * rocking_column.h, shared with stiff_blocks.c; this file keeps its state, events and handlers.
+ *
+ * C99, only rocking.h, rocking_column.h and the C library. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
 #include "rocking.h"
 
 #define MAXB 4                    /* blocks */
-#define MAXD (2 * MAXB)           /* interface DOFs */
-#define MAXNODES (3 * MAXB)       /* mass nodes */
-#define MAXND (2 * MAXNODES)      /* nodal DOFs */
+#include "rocking_column.h"
+
 #define MAXEV 4096                /* events kept per scene */
-#define PI 3.14159265358979323846
-#define GRAVITY 9.81
 
 /* ------------------------------------------------------------------------------------------ */
-/* Domain: blocks, nodes, lumped masses                                                        */
+/* Domain: the Column of rocking_column.h (blocks, nodes, lumped masses)                        */
 /* ------------------------------------------------------------------------------------------ */
 
-typedef struct {
-    int nb;                       /* blocks = interfaces */
-    double width[MAXB], height[MAXB], mass[MAXB], inertia[MAXB];
-    double half_contact[MAXB];    /* b_k of interface k (under block k) */
-    double base_y[MAXB];          /* height of interface k in the straight column */
-    int n_nodes;
-    double node_ref[MAXNODES][2]; /* reference (straight) coordinates */
-    double node_mass[MAXNODES];
-    int node_block[MAXNODES];
-    double nodal_mass[MAXND * MAXND]; /* lumped: diagonal, column-major */
-} Domain;
-
-/* Builds the domain. contact_width may be NULL (min of the widths). */
-static void domain_init(Domain *d, int nb, const double *w, const double *h, const double *m,
-                        const double *contact_width) {
-    int k, i, nd;
-    double y = 0.0;
-    memset(d, 0, sizeof *d);
-    d->nb = nb;
-    for (k = 0; k < nb; k++) {
-        double half, end;
-        d->width[k] = w[k];
-        d->height[k] = h[k];
-        d->mass[k] = m[k];
-        d->inertia[k] = m[k] * (w[k] * w[k] + h[k] * h[k]) / 12.0;
-        if (contact_width) {
-            d->half_contact[k] = 0.5 * contact_width[k];
-        } else {
-            d->half_contact[k] = 0.5 * (k == 0 ? w[0] : fmin(w[k - 1], w[k]));
-        }
-        d->base_y[k] = y;
-        /* three mass points: ends carry I / (2 (h/2)^2), the centre the rest (Appendix C) */
-        half = 0.5 * h[k];
-        end = d->inertia[k] / (2.0 * half * half);
-        for (i = 0; i < 3; i++) {
-            int n = 3 * k + i;
-            d->node_ref[n][0] = 0.0;
-            d->node_ref[n][1] = y + half * i;
-            d->node_mass[n] = (i == 1) ? m[k] - 2.0 * end : end;
-            d->node_block[n] = k;
-        }
-        y += h[k];
-    }
-    d->n_nodes = 3 * nb;
-    nd = 2 * d->n_nodes;
-    for (i = 0; i < d->n_nodes; i++) {
-        d->nodal_mass[(2 * i) * nd + 2 * i] = d->node_mass[i];
-        d->nodal_mass[(2 * i + 1) * nd + 2 * i + 1] = d->node_mass[i];
-    }
-}
-
-/* Current geometry from the interface DOF angles (large rotations): interface k turns everything
- * above it by phi[k] + phi[n+k] about its right corner (phi[k] != 0) or its left corner. */
-typedef struct {
-    double pivot[MAXD][2];        /* pivot of each DOF: right corners, then left corners */
-    double node[MAXNODES][2];     /* current node positions */
-    double angle[MAXB];           /* absolute block rotations */
-} Geometry;
-
-static void geometry(const Domain *d, const double *phi, Geometry *g) {
-    int n = d->nb, k, i;
-    double ca = 1.0, sa = 0.0, alpha = 0.0, t[2] = {0.0, 0.0};
-    for (k = 0; k < n; k++) {
-        double b = d->half_contact[k], y = d->base_y[k], theta = phi[k] + phi[n + k];
-        /* corners of interface k belong to the block below (the ground for k = 0) */
-        g->pivot[k][0] = ca * b - sa * y + t[0];
-        g->pivot[k][1] = sa * b + ca * y + t[1];
-        g->pivot[n + k][0] = -ca * b - sa * y + t[0];
-        g->pivot[n + k][1] = -sa * b + ca * y + t[1];
-        if (theta != 0.0) {
-            const double *p = phi[k] != 0.0 ? g->pivot[k] : g->pivot[n + k];
-            double ct = cos(theta), st = sin(theta), dx = t[0] - p[0], dy = t[1] - p[1];
-            /* x -> P + R(theta) (R(alpha) X + t - P) */
-            t[0] = p[0] + ct * dx - st * dy;
-            t[1] = p[1] + st * dx + ct * dy;
-            alpha += theta;
-            ca = cos(alpha);
-            sa = sin(alpha);
-        }
-        g->angle[k] = alpha;
-        for (i = 3 * k; i < 3 * k + 3; i++) {
-            const double *X = d->node_ref[i];
-            g->node[i][0] = ca * X[0] - sa * X[1] + t[0];
-            g->node[i][1] = sa * X[0] + ca * X[1] + t[1];
-        }
-    }
-}
-
-/* Transformation B (nodal DOFs x interface DOFs, column-major): a rotation rate about the pivot P
- * of DOF a moves every node r above interface k = a mod n at z x (r - P). */
-static void transformation(const Domain *d, const Geometry *g, double *B) {
-    int n = d->nb, rows = 2 * d->n_nodes, a, i;
-    for (a = 0; a < 2 * n; a++) {
-        int k = a % n;
-        for (i = 0; i < d->n_nodes; i++) {
-            int above = d->node_block[i] >= k;
-            B[a * rows + 2 * i] = above ? -(g->node[i][1] - g->pivot[a][1]) : 0.0;
-            B[a * rows + 2 * i + 1] = above ? (g->node[i][0] - g->pivot[a][0]) : 0.0;
-        }
-    }
-}
-
-/* The reduced system of the current geometry: M = BᵀMB (2n x 2n), q = Bᵀp, with the nodal loads
- * p = (-m a_g, -m g) of the ground acceleration and gravity. Returns the library's code. */
-static int32_t assemble(const Domain *d, const double *phi, double ag, double *M, double *q,
+/* The reduced system of the current geometry (Appendix C): M = BᵀMB (2n x 2n), q = Bᵀp, with B
+ * rebuilt from the geometry at phi. Returns the library's code. */
+static int32_t assemble(const Column *d, const double *phi, double ag, double *M, double *q,
                         Geometry *g) {
-    double B[MAXND * MAXD], p[MAXND];
-    int i;
-    geometry(d, phi, g);
-    transformation(d, g, B);
-    for (i = 0; i < d->n_nodes; i++) {
-        p[2 * i] = -d->node_mass[i] * ag;
-        p[2 * i + 1] = -d->node_mass[i] * GRAVITY;
-    }
-    return rocking_reduce((size_t)(2 * d->n_nodes), (size_t)(2 * d->nb), d->nodal_mass, B, p, M, q);
+    double B[MAXND * MAXD];
+    column_geometry(d, phi, NULL, g);
+    column_transformation(d, g, B);
+    return column_reduce(d, B, 2 * d->nb, ag, M, q);
 }
 
-/* ------------------------------------------------------------------------------------------ */
-/* Small dense algebra                                                                          */
-/* ------------------------------------------------------------------------------------------ */
-
-/* Solves A x = r by Cholesky for the nf x nf sub-matrix of the 2n x 2n M on the DOFs idx.
- * Returns 0, or 1 if not positive definite. */
-static int solve_sub(int nd, const double *M, const int *idx, int nf, const double *r, double *x) {
-    double L[MAXD * MAXD], y[MAXD];
-    int i, j, k;
-    for (i = 0; i < nf; i++) {
-        for (j = 0; j <= i; j++) {
-            double s = M[idx[j] * nd + idx[i]];
-            for (k = 0; k < j; k++) s -= L[i * MAXD + k] * L[j * MAXD + k];
-            if (i == j) {
-                if (!(s > 0.0)) return 1;
-                L[i * MAXD + i] = sqrt(s);
-            } else {
-                L[i * MAXD + j] = s / L[j * MAXD + j];
-            }
-        }
-    }
-    for (i = 0; i < nf; i++) {
-        double s = r[i];
-        for (k = 0; k < i; k++) s -= L[i * MAXD + k] * y[k];
-        y[i] = s / L[i * MAXD + i];
-    }
-    for (i = nf - 1; i >= 0; i--) {
-        double s = y[i];
-        for (k = i + 1; k < nf; k++) s -= L[k * MAXD + i] * x[k];
-        x[i] = s / L[i * MAXD + i];
-    }
-    return 0;
-}
-
+/* Kinetic energy 1/2 vᵀMv of the rates v in the metric M (nd x nd). */
 static double kinetic(int nd, const double *M, const double *v) {
     double e = 0.0;
     int i, j;
@@ -220,24 +81,6 @@ static double kinetic(int nd, const double *M, const double *v) {
 /* ------------------------------------------------------------------------------------------ */
 /* Scenes and the analysis                                                                      */
 /* ------------------------------------------------------------------------------------------ */
-
-typedef struct {
-    const char *name;
-    const char *title;
-    int nb;
-    double width[MAXB], height[MAXB], mass[MAXB], contact[MAXB]; /* contact[0] == 0: default */
-    double initial[MAXB];   /* initial angle per interface: < 0 right corner, > 0 left corner */
-    /* ground acceleration a(t) = amp * sin(pi t / half_period) for 0 <= t <= lobes*half_period */
-    double amp, half_period;
-    int lobes;
-    uint32_t n_impacts;     /* consecutive impacts per closing (1 = Housner) */
-    double dt, duration;
-} Scene;
-
-static double ground(const Scene *s, double t) {
-    if (s->lobes == 0 || t < 0.0 || t > s->lobes * s->half_period) return 0.0;
-    return s->amp * sin(PI * t / s->half_period);
-}
 
 /* State of the analysis: committed or trial (the same layout, as OpenSees keeps both). */
 typedef struct {
@@ -259,8 +102,10 @@ typedef struct {
 
 typedef struct {
     const Scene *s;
-    Domain d;
+    Column d;
     State c;                 /* last committed state */
+    State tr, prev;          /* trial state; the commit before the last */
+    long steps;              /* committed steps */
     RockingOptions opts;
     double h_min;
     double peak[MAXB];
@@ -273,23 +118,13 @@ typedef struct {
     int failed;             /* a library call failed */
 } Analysis;
 
-static const char *KIND[] = {"opening", "impact", "settled"};
-
-/* Free DOFs of a configuration: the open DOF of each open interface. */
-static int free_dofs(int n, const int8_t *status, int *idx) {
-    int k, nf = 0;
-    for (k = 0; k < n; k++)
-        if (status[k] != 0) idx[nf++] = status[k] < 0 ? k : n + k;
-    return nf;
-}
-
 /* Accelerations of the configuration at the state: M_FF a_F = q_F, zero elsewhere. */
 static int accelerations(int n, State *st) {
-    int idx[MAXD], nf = free_dofs(n, st->status, idx), i;
+    int idx[MAXD], nf = free_rotations(n, st->status, idx), i;
     double r[MAXD], x[MAXD];
     for (i = 0; i < 2 * n; i++) st->acc[i] = 0.0;
     for (i = 0; i < nf; i++) r[i] = st->q[idx[i]];
-    if (nf && solve_sub(2 * n, st->M, idx, nf, r, x)) return 1;
+    if (nf && solve_sub(2 * n, st->M, NULL, idx, nf, r, x)) return 1;
     for (i = 0; i < nf; i++) st->acc[idx[i]] = x[i];
     return 0;
 }
@@ -302,95 +137,57 @@ static int library_ok(Analysis *A, int32_t code, const char *what) {
     return 0;
 }
 
-/* One Newmark (average acceleration) trial step of length h from the committed state. */
+/* One Newmark (average acceleration) trial step of length h from the committed state, the
+ * nonlinear geometry by fixed-point iteration on the acceleration. */
 static int newmark_trial(Analysis *A, double h, State *tr) {
-    int n = A->d.nb, nd = 2 * n, idx[MAXD], nf, it, i;
+    int n = A->d.nb, nd = 2 * n, idx[MAXD], nf, it;
     const State *c = &A->c;
     double ag;
     *tr = *c;
     tr->t = c->t + h;
     ag = ground(A->s, tr->t);
-    nf = free_dofs(n, c->status, idx);
+    nf = free_rotations(n, c->status, idx);
     for (it = 0; it < 100; it++) {
-        double change = 0.0, scale = 1.0;
-        for (i = 0; i < nf; i++) {
-            int a = idx[i];
-            tr->phi[a] = c->phi[a] + h * c->rate[a] + 0.25 * h * h * (c->acc[a] + tr->acc[a]);
-        }
+        double change = 0.0, scale = 1.0, old[MAXD];
+        newmark_displacements(nf, idx, h, c->phi, c->rate, c->acc, tr->acc, tr->phi);
         if (!library_ok(A, assemble(&A->d, tr->phi, ag, tr->M, tr->q, &tr->g), "rocking_reduce"))
             return 1;
-        {
-            double old[MAXD];
-            memcpy(old, tr->acc, sizeof old);
-            if (accelerations(n, tr)) {
-                fprintf(stderr, "scene %s: reduced mass matrix not positive definite\n", A->s->name);
-                A->failed = 1;
-                return 1;
-            }
-            for (i = 0; i < nd; i++) {
-                change = fmax(change, fabs(tr->acc[i] - old[i]));
-                scale = fmax(scale, fabs(tr->acc[i]));
-            }
+        memcpy(old, tr->acc, sizeof old);
+        if (accelerations(n, tr)) {
+            fprintf(stderr, "scene %s: reduced mass matrix not positive definite\n", A->s->name);
+            A->failed = 1;
+            return 1;
         }
+        iteration_change(nd, tr->acc, old, &change, &scale);
         if (change <= 1e-13 * scale) break;
     }
-    for (i = 0; i < nf; i++) {
-        int a = idx[i];
-        tr->rate[a] = c->rate[a] + 0.5 * h * (c->acc[a] + tr->acc[a]);
-    }
+    newmark_rates(nf, idx, h, c->rate, c->acc, tr->acc, tr->rate);
     return 0;
 }
 
 /* Events in a trial step. Returns 0 none, 1 impact (interface in *k), 2 opening, 3 overturning. */
 static int detect(Analysis *A, const State *tr, int *k_out) {
-    int n = A->d.nb, k, j;
-    double first = 2.0;
-    int which = -1;
-    /* impact: an open DOF came back through zero, moving towards it (trap (b): a DOF that has
-     * just opened at exactly zero and moves away is not an impact) */
-    for (k = 0; k < n; k++) {
-        int a = A->c.status[k] < 0 ? k : n + k;
-        double sgn = A->c.status[k] < 0 ? -1.0 : 1.0;
-        if (A->c.status[k] == 0) continue;
-        if (sgn * tr->phi[a] < 0.0 && sgn * tr->rate[a] < 0.0) {
-            double frac = A->c.phi[a] / (A->c.phi[a] - tr->phi[a]);
-            if (frac < first) {
-                first = frac;
-                which = k;
-            }
-        }
-    }
-    if (which >= 0) {
-        *k_out = which;
+    int n = A->d.nb, k;
+    /* impact: an open DOF came back through zero, moving towards it (SPEC §5 trap (b)) */
+    k = impact_crossing(n, A->c.status, A->c.phi, tr->phi, tr->rate);
+    if (k >= 0) {
+        *k_out = k;
         return 1;
     }
     /* opening: the eccentricity test as reaction signs on the closed interfaces */
-    for (k = 0; k < n && tr->t > A->opening_quiet_until; k++) {
-        if (tr->status[k] == 0) {
-            uint8_t holds = 1;
-            if (!library_ok(A, rocking_check_configuration((size_t)n, tr->M, tr->q, tr->status, 0.0,
-                                                           &holds, NULL, NULL),
-                            "rocking_check_configuration"))
-                return -1;
-            if (!holds) return 2;
-            break;
-        }
+    if (tr->t > A->opening_quiet_until && any_closed(n, tr->status)) {
+        uint8_t holds = 1;
+        if (!library_ok(A, rocking_check_configuration((size_t)n, tr->M, tr->q, tr->status, 0.0,
+                                                       &holds, NULL, NULL),
+                        "rocking_check_configuration"))
+            return -1;
+        if (!holds) return 2;
     }
     /* overturning: the centre of mass of the part above an open interface beyond its pivot */
-    for (k = 0; k < n; k++) {
-        double mx = 0.0, mm = 0.0;
-        const double *p;
-        if (tr->status[k] == 0) continue;
-        p = tr->g.pivot[tr->status[k] < 0 ? k : n + k];
-        for (j = 3 * k; j < A->d.n_nodes; j++) {
-            mx += A->d.node_mass[j] * tr->g.node[j][0];
-            mm += A->d.node_mass[j];
-        }
-        mx /= mm;
-        if ((tr->status[k] > 0 && mx < p[0]) || (tr->status[k] < 0 && mx > p[0])) {
-            *k_out = k;
-            return 3;
-        }
+    k = overturning(&A->d, tr->status, &tr->g);
+    if (k >= 0) {
+        *k_out = k;
+        return 3;
     }
     return 0;
 }
@@ -413,25 +210,11 @@ static void record(Analysis *A, int kind, double t, int k, const int8_t *before,
     e->v_after = v1;
 }
 
-/* Kinetic-metric projection of the rates onto the current configuration's DOFs (what remains of
- * the motion when an interface is closed for good): M_FF v_F = (M v)_F. */
-static void project(Analysis *A) {
-    int n = A->d.nb, nd = 2 * n, idx[MAXD], nf = free_dofs(n, A->c.status, idx), i, j;
-    double r[MAXD], x[MAXD];
-    for (i = 0; i < nf; i++) {
-        r[i] = 0.0;
-        for (j = 0; j < nd; j++) r[i] += A->c.M[j * nd + idx[i]] * A->c.rate[j];
-    }
-    if (nf) solve_sub(nd, A->c.M, idx, nf, r, x);
-    for (i = 0; i < nd; i++) A->c.rate[i] = 0.0;
-    for (i = 0; i < nf; i++) A->c.rate[idx[i]] = x[i];
-}
-
 /* Impact at interface k inside the committed step from `prev` to A->c (at most H_MIN long):
  * interpolate to the crossing, set the DOF to exactly zero, hand the decision to the library. */
 static void handle_impact(Analysis *A, const State *prev, int k) {
-    int n = A->d.nb, nd = 2 * n, i;
-    int a = A->c.status[k] < 0 ? k : n + k;
+    int n = A->d.nb, nd = 2 * n;
+    int a = open_dof(n, k, A->c.status);
     double frac = prev->phi[a] / (prev->phi[a] - A->c.phi[a]);
     int8_t before[MAXB];
     RockingReport rep;
@@ -439,10 +222,8 @@ static void handle_impact(Analysis *A, const State *prev, int k) {
     State *c = &A->c;
     memcpy(before, c->status, MAXB);
     c->t = prev->t + frac * (c->t - prev->t);
-    for (i = 0; i < nd; i++) {
-        c->phi[i] = prev->phi[i] + frac * (c->phi[i] - prev->phi[i]);
-        c->rate[i] = prev->rate[i] + frac * (c->rate[i] - prev->rate[i]);
-    }
+    interpolate(nd, frac, prev->phi, c->phi);
+    interpolate(nd, frac, prev->rate, c->rate);
     c->phi[a] = 0.0;
     v_before = c->rate[a];
     if (!library_ok(A, assemble(&A->d, c->phi, ground(A->s, c->t), c->M, c->q, &c->g), "rocking_reduce"))
@@ -450,139 +231,93 @@ static void handle_impact(Analysis *A, const State *prev, int k) {
     if (!library_ok(A, rocking_impact_model((size_t)n, c->M, c->status, c->rate, (size_t)k, &A->opts, &rep),
                     "rocking_impact_model"))
         return;
-    if (c->status[k] != 0) v_after = c->rate[c->status[k] < 0 ? k : n + k];
+    if (c->status[k] != 0) v_after = c->rate[open_dof(n, k, c->status)];
     record(A, 1, c->t, k, before, rep.kinetic_before, rep.kinetic_after, v_before, v_after);
-    /* Settling (a harness rule, as the driver's): impacts of shrinking amplitude accumulate in
-     * finite time (Zeno); when the energy left is negligible, or two impacts at this interface
-     * come closer than four steps, the interface is closed for good. */
+    /* settling (see settles): the interface closed for good, the rates projected onto the rest */
     if (c->status[k] != 0 &&
-        (rep.kinetic_after < 1e-6 * A->tip_energy || c->t - A->last_impact[k] < 4.0 * A->s->dt)) {
+        settles(rep.kinetic_after, A->tip_energy, c->t, A->last_impact[k], A->s->dt)) {
         int8_t b2[MAXB];
         double ke0 = kinetic(nd, c->M, c->rate);
         memcpy(b2, c->status, MAXB);
         c->status[k] = 0;
-        project(A);
+        project_rates(n, nd, c->M, c->status, c->rate);
         record(A, 2, c->t, k, b2, ke0, kinetic(nd, c->M, c->rate), 0.0, 0.0);
     }
     A->last_impact[k] = c->t;
     accelerations(n, c);
 }
 
-/* Opening at the committed state, just past the event. The opening model is judged a little
- * ahead (SPEC §5 trap (a)): at the committed state the violated reaction is only ~1e-11 (the
- * event was located to H_MIN), and there the library's enumeration solver still prefers the
- * current configuration (its criterion beats the opening ones only by a relative ~1e-22, below
- * the enumeration's 1e-14 tie margin) while rocking_check_configuration already says "must
- * open". So, as the Rust driver does, the state is extrapolated by eps = 1e-3, 1e-2, 1e-1, 1
- * steps and the model asked again on BᵀMB, Bᵀp there, until it opens something. */
+/* Opening at the committed state, just past the event: the opening model asked on BᵀMB, Bᵀp of
+ * the state extrapolated along OPENING_LADDER (SPEC §5 trap (a), see rocking_column.h) until it
+ * opens something. */
 static void handle_opening(Analysis *A) {
-    static const double ladder[5] = {0.0, 1e-3, 1e-2, 1e-1, 1.0};
-    int n = A->d.nb, i, k, l;
+    int n = A->d.nb, k, l;
     int8_t before[MAXB];
-    RockingReport rep;
     State *c = &A->c;
     memcpy(before, c->status, MAXB);
-    for (l = 0; l < 5; l++) {
-        double eps = ladder[l] * A->s->dt, phi[MAXD], M[MAXD * MAXD], q[MAXD], acc[MAXD];
-        int8_t st[MAXB];
+    for (l = 0; l < OPENING_RUNGS; l++) {
+        double eps = OPENING_LADDER[l] * A->s->dt, phi[MAXD], M[MAXD * MAXD], q[MAXD];
+        int changed;
         Geometry g;
-        for (i = 0; i < 2 * n; i++) phi[i] = c->phi[i] + eps * c->rate[i] + 0.5 * eps * eps * c->acc[i];
+        extrapolate(2 * n, eps, c->phi, c->rate, c->acc, phi);
         if (!library_ok(A, assemble(&A->d, phi, ground(A->s, c->t + eps), M, q, &g), "rocking_reduce"))
             return;
-        memcpy(st, c->status, MAXB);
-        if (!library_ok(A, rocking_opening_model((size_t)n, M, q, st, acc, &A->opts, &rep),
+        if (!library_ok(A, opening_model(n, M, q, c->status, &A->opts, &changed),
                         "rocking_opening_model"))
             return;
-        if (rep.changed) {
-            memcpy(c->status, st, MAXB);
-            break;
-        }
+        if (changed) break;
     }
-    if (l == 5) { /* nothing opens within a step: go on, and do not ask again before the grid */
+    if (l == OPENING_RUNGS) {
+        /* nothing opens within a step: go on, and do not ask again before the grid */
         A->opening_quiet_until = c->t + A->s->dt;
         return;
     }
-    for (k = 0; k < n; k++) {
-        if (before[k] == 0 && c->status[k] != 0) {
-            c->phi[k] = c->phi[n + k] = 0.0;
-            c->rate[k] = c->rate[n + k] = 0.0;
-        }
-    }
+    k = start_openings(n, before, c->status, c->phi, c->rate);
     accelerations(n, c);
-    for (k = 0; k < n && !(before[k] == 0 && c->status[k] != 0); k++) {
-    }
     record(A, 0, c->t, k, before, 0.0, 0.0, 0.0, 0.0);
 }
 
-static void track_peaks(Analysis *A) {
-    int k;
-    for (k = 0; k < A->d.nb; k++) A->peak[k] = fmax(A->peak[k], fabs(A->c.g.angle[k]));
+/* transient()'s hooks (rocking_column.h). The trial step: Newmark, then the event in it. */
+static int trial_step(void *an, double h, int *k) {
+    Analysis *A = an;
+    return newmark_trial(A, h, &A->tr) ? -1 : detect(A, &A->tr, k);
 }
 
-/* The transient analysis: analyze(duration / dt) with event-driven step subdivision. */
+/* The commit: the trial becomes the committed state, and its event is handled there. */
+static int commit_step(void *an, int ev, int k) {
+    Analysis *A = an;
+    A->prev = A->c;
+    A->c = A->tr;
+    if (++A->steps > 50000000) {
+        fprintf(stderr, "scene %s: too many steps\n", A->s->name);
+        return -1;
+    }
+    if (ev == 1) handle_impact(A, &A->prev, k);
+    if (ev == 2) handle_opening(A);
+    track_peaks(A->d.nb, &A->c.g, A->peak);
+    if (ev == 3) A->overturned = 1;
+    return ev == 3;
+}
+
+/* The transient analysis of a scene: analyze(duration / dt) with event-driven step subdivision
+ * (transient() in rocking_column.h). */
 static int analyze(Analysis *A, const Scene *s) {
-    int n = s->nb, k, steps = 0;
-    State tr, prev;
+    int n = s->nb, k;
     memset(A, 0, sizeof *A);
     A->s = s;
-    domain_init(&A->d, n, s->width, s->height, s->mass, s->contact[0] > 0.0 ? s->contact : NULL);
-    A->opts.n_impacts = s->n_impacts;
-    A->opts.solver = 0;
-    A->opts.tolerance = 1e-12;
+    column_init(&A->d, n, s->width, s->height, s->mass, s->contact[0] > 0.0 ? s->contact : NULL);
+    A->opts = scene_options(s);
     A->h_min = s->dt * ldexp(1.0, -30);
     for (k = 0; k < n; k++) A->last_impact[k] = -1.0;
     A->opening_quiet_until = -1.0;
-    /* smallest potential energy that tips a part of the straight column: m_above g (R - y_c) */
-    A->tip_energy = INFINITY;
-    for (k = 0; k < n; k++) {
-        double m = 0.0, my = 0.0, b = A->d.half_contact[k];
-        int j;
-        for (j = k; j < n; j++) {
-            m += s->mass[j];
-            my += s->mass[j] * (A->d.base_y[j] + 0.5 * s->height[j] - A->d.base_y[k]);
-        }
-        my /= m;
-        A->tip_energy = fmin(A->tip_energy, m * GRAVITY * (sqrt(b * b + my * my) - my));
-    }
+    A->tip_energy = column_tip_energy(&A->d);
     /* initial state: at rest, tilted as the scene says */
-    for (k = 0; k < n; k++) {
-        A->c.status[k] = (int8_t)(s->initial[k] < 0.0 ? -1 : s->initial[k] > 0.0 ? 1 : 0);
-        if (s->initial[k] < 0.0) A->c.phi[k] = s->initial[k];
-        if (s->initial[k] > 0.0) A->c.phi[n + k] = s->initial[k];
-    }
+    initial_configuration(s, A->c.status, A->c.phi);
     if (!library_ok(A, assemble(&A->d, A->c.phi, ground(s, 0.0), A->c.M, A->c.q, &A->c.g), "rocking_reduce"))
         return 1;
     accelerations(n, &A->c);
-    track_peaks(A);
-    while (A->c.t < s->duration - 1e-12 && !A->failed) {
-        double target = fmin((floor(A->c.t / s->dt + 1e-6) + 1.0) * s->dt, s->duration);
-        double h = target - A->c.t;
-        while (A->c.t < target - 1e-15 && !A->failed) {
-            int k_ev = -1, ev;
-            if (newmark_trial(A, h, &tr)) return 1;
-            ev = detect(A, &tr, &k_ev);
-            if (ev < 0) return 1;
-            if (ev != 0 && h > A->h_min) { /* revert to the last commit, subdivide */
-                h *= 0.5;
-                continue;
-            }
-            prev = A->c;                   /* commit */
-            A->c = tr;
-            if (++steps > 50000000) {
-                fprintf(stderr, "scene %s: too many steps\n", s->name);
-                return 1;
-            }
-            if (ev == 1) handle_impact(A, &prev, k_ev);
-            if (ev == 2) handle_opening(A);
-            track_peaks(A);
-            if (ev == 3) {
-                A->overturned = 1;
-                return A->failed;
-            }
-            h = target - A->c.t;
-        }
-    }
-    return A->failed;
+    track_peaks(n, &A->c.g, A->peak);
+    return transient(A, trial_step, commit_step, &A->c.t, &A->failed, s->dt, s->duration, A->h_min);
 }
 
 /* ------------------------------------------------------------------------------------------ */
@@ -615,29 +350,9 @@ static double amplitude(double alpha, double p2, double omega) {
     return alpha - acos(cos(alpha) + omega * omega / (2.0 * p2));
 }
 
-static int checks_failed = 0;
-
-static void check(const char *name, double value, double expected, double tol) {
-    int ok = fabs(value - expected) <= tol;
-    printf("CHECK %s value=%.10g expected=%.10g tol=%.3g %s\n", name, value, expected, tol,
-           ok ? "ok" : "FAIL");
-    if (!ok) checks_failed++;
-}
-
 /* ------------------------------------------------------------------------------------------ */
 /* Reporting                                                                                    */
 /* ------------------------------------------------------------------------------------------ */
-
-static void statuses(char *buf, size_t len, const int8_t *st, int n) {
-    size_t used = 0;
-    int k;
-    buf[0] = '\0';
-    for (k = 0; k < n && used < len; k++) {
-        int w = snprintf(buf + used, len - used, "%s%+d", k ? "," : "", st[k]);
-        if (w < 0) break;
-        used += (size_t)w;
-    }
-}
 
 static void report(const Analysis *A) {
     const Scene *s = A->s;
@@ -664,7 +379,7 @@ static void report(const Analysis *A) {
     {
         int8_t init[MAXB] = {0};
         for (k = 0; k < n; k++)
-            init[k] = (int8_t)(s->initial[k] < 0.0 ? -1 : s->initial[k] > 0.0 ? 1 : 0);
+            init[k] = initial_status(s->initial[k]);
         statuses(b0, sizeof b0, init, n);
         used += (size_t)snprintf(configs + used, sizeof configs - used, "%s", b0);
     }
@@ -689,10 +404,10 @@ static void report(const Analysis *A) {
 static void check_reduction(void) {
     double w[2] = {0.1, 0.1}, h[2] = {0.3, 0.3}, m[2] = {16.2, 16.2}, cw[2] = {0.096, 0.096};
     double phi[4] = {-0.02, 0.0, 0.0, 0.15}, Mr[16], qr[4], Mc[16], qc[4], err = 0.0, scale = 0.0;
-    Domain d;
+    Column d;
     Geometry g;
     int i;
-    domain_init(&d, 2, w, h, m, cw);
+    column_init(&d, 2, w, h, m, cw);
     if (assemble(&d, phi, 1.3, Mr, qr, &g) != ROCKING_OK ||
         rocking_column_mass_matrix(2, w, h, m, NULL, cw, phi, 1.3, GRAVITY, Mc, qc) != ROCKING_OK) {
         fprintf(stderr, "reduction check: %s\n", rocking_last_error_message());
