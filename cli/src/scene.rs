@@ -55,7 +55,7 @@ pub enum ExcitationSpec {
     Rectangular { amplitude: f64, duration: f64 },
     /// Symmetric triangle peaking at `duration / 2`.
     Triangular { amplitude: f64, duration: f64 },
-    /// Ricker wavelet of peak `amplitude` and central `frequency` [Hz].
+    /// Ricker wavelet of peak `amplitude` and central `frequency` (Hz).
     Ricker { amplitude: f64, frequency: f64 },
     /// Mavroeidis–Papageorgiou (2003) pulse of peak acceleration `amplitude`.
     MavroeidisPapageorgiou {
@@ -137,9 +137,10 @@ pub struct SceneSpec {
     pub impacts: u32,
     pub duration: f64,
     pub dt: f64,
+    /// "wilson" (default), "newmark", "rk4", "dop853", or `{"type": "wilson", "theta": 1.4}`.
     #[serde(default)]
     pub integrator: Option<IntegratorSpec>,
-    /// "linear" (thesis, default) or "hermite".
+    /// "linear" (thesis, default) or "hermite" (refined by re-integration with "dop853").
     #[serde(default)]
     pub locator: Option<String>,
     /// "auto" (default), "enumerate" or "projection".
@@ -232,10 +233,11 @@ pub fn build(spec: SceneSpec, base: &Path, name: &str) -> Result<Scene, SceneErr
             "wilson" | "wilson_theta" => Integrator::default(),
             "newmark" => Integrator::Newmark,
             "rk4" => Integrator::Rk4,
+            "dop853" => Integrator::Dop853,
             other => {
                 return Err(err(
                     "integrator",
-                    format!("unknown integrator {other:?} (wilson, newmark, rk4)"),
+                    format!("unknown integrator {other:?} (wilson, newmark, rk4, dop853)"),
                 ))
             }
         },
@@ -488,6 +490,22 @@ mod tests {
         assert_eq!(s.column.n_interfaces(), 1);
         assert_eq!(s.options.model.n_impacts, 1);
         assert!((s.excitation.peak() - 5.0).abs() < 1e-12);
+        for (name, integrator) in [
+            ("wilson", Integrator::default()),
+            ("newmark", Integrator::Newmark),
+            ("rk4", Integrator::Rk4),
+            ("dop853", Integrator::Dop853),
+        ] {
+            let text = GOOD.replace(
+                "\"duration\": 1.0,",
+                &format!(
+                    "\"duration\": 1.0, \"integrator\": \"{name}\", \"locator\": \"hermite\","
+                ),
+            );
+            let s = parse(&text).unwrap();
+            assert_eq!(s.options.integrator, integrator);
+            assert_eq!(s.options.locator, EventLocator::Hermite);
+        }
     }
 
     #[test]

@@ -26,6 +26,39 @@ pub(crate) fn hermite_rate(s: f64, h: f64, y0: f64, y1: f64, v0: f64, v1: f64) -
         / h
 }
 
+/// Quintic Hermite interpolation of `y` on a step of length `h` at `s ∈ [0, 1]` from the values,
+/// first and second derivatives at both ends: the value and the time derivative.
+#[allow(clippy::too_many_arguments)]
+#[inline]
+pub(crate) fn quintic(
+    s: f64,
+    h: f64,
+    y0: f64,
+    y1: f64,
+    v0: f64,
+    v1: f64,
+    a0: f64,
+    a1: f64,
+) -> (f64, f64) {
+    let s2 = s * s;
+    let s3 = s2 * s;
+    let s4 = s3 * s;
+    let s5 = s4 * s;
+    let (hv0, hv1, ha0, ha1) = (h * v0, h * v1, h * h * a0, h * h * a1);
+    let y = (1.0 - 10.0 * s3 + 15.0 * s4 - 6.0 * s5) * y0
+        + (s - 6.0 * s3 + 8.0 * s4 - 3.0 * s5) * hv0
+        + 0.5 * (s2 - 3.0 * s3 + 3.0 * s4 - s5) * ha0
+        + 0.5 * (s3 - 2.0 * s4 + s5) * ha1
+        + (-4.0 * s3 + 7.0 * s4 - 3.0 * s5) * hv1
+        + (10.0 * s3 - 15.0 * s4 + 6.0 * s5) * y1;
+    let dy = 30.0 * (s2 - 2.0 * s3 + s4) * (y1 - y0)
+        + (1.0 - 18.0 * s2 + 32.0 * s3 - 15.0 * s4) * hv0
+        + (s - 4.5 * s2 + 6.0 * s3 - 2.5 * s4) * ha0
+        + (1.5 * s2 - 4.0 * s3 + 2.5 * s4) * ha1
+        + (-12.0 * s2 + 28.0 * s3 - 15.0 * s4) * hv1;
+    (y, dy / h)
+}
+
 /// Root of `f` on `[a, b]` with `f(a) <= 0 < f(b)` by the Illinois variant of regula falsi.
 /// Returns a point of the final bracket's violated side (`f > 0`, or `b`), so that the event has
 /// happened at the returned time; stops when the bracket is below `tol`.
@@ -150,6 +183,23 @@ mod tests {
             assert!(
                 (hermite_rate(s, h, y(t0), y(t0 + h), dy(t0), dy(t0 + h)) - dy(t)).abs() < 1e-13
             );
+        }
+    }
+
+    #[test]
+    fn quintic_reproduces_quintics() {
+        let y = |t: f64| {
+            0.3 - t + 2.0 * t.powi(2) - 0.7 * t.powi(3) + 1.1 * t.powi(4) - 2.0 * t.powi(5)
+        };
+        let dy = |t: f64| -1.0 + 4.0 * t - 2.1 * t.powi(2) + 4.4 * t.powi(3) - 10.0 * t.powi(4);
+        let ddy = |t: f64| 4.0 - 4.2 * t + 13.2 * t.powi(2) - 40.0 * t.powi(3);
+        let (t0, h) = (0.4, 0.3);
+        let t1 = t0 + h;
+        for s in [0.0, 0.2, 0.55, 0.9, 1.0] {
+            let t = t0 + s * h;
+            let (v, d) = quintic(s, h, y(t0), y(t1), dy(t0), dy(t1), ddy(t0), ddy(t1));
+            assert!((v - y(t)).abs() < 1e-14, "{v} vs {}", y(t));
+            assert!((d - dy(t)).abs() < 1e-13, "{d} vs {}", dy(t));
         }
     }
 

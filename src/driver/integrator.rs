@@ -6,7 +6,12 @@
 //! `(θ dt)² |∂f/∂x| / 6 + θ dt |∂f/∂v| / 2` — of the order of `(p dt)²`, tiny at usual steps —
 //! so two evaluations are the rule; the iteration stops when the change of the acceleration is
 //! below `1e-6` of its size (the remaining error is then far below the truncation error).
+//!
+//! RK4 and DOP853 are explicit Runge–Kutta methods on the first-order system `(x, v)' = (v, a)`:
+//! stage `i` evaluates `a` at `x0 + h Σ a_ij V_j`, `v0 + h Σ a_ij A_j` and at the ground
+//! acceleration of its own time `t0 + c_i h`.
 
+use super::dop853;
 use super::dynamics::Dynamics;
 use super::{GroundMotion, Integrator};
 use crate::configuration::Status;
@@ -25,11 +30,20 @@ pub(crate) struct Stepper {
     an: Vec<f64>,
     kv: [Vec<f64>; 3],
     kx: [Vec<f64>; 3],
+    /// DOP853 stages, `n` per stage: velocities `V_j` and accelerations `A_j` (empty for the
+    /// other methods).
+    sv: Vec<f64>,
+    sa: Vec<f64>,
 }
 
 impl Stepper {
-    pub fn new(n: usize) -> Stepper {
+    pub fn new(n: usize, method: Integrator) -> Stepper {
         let z = || vec![0.0; n];
+        let stages = if method == Integrator::Dop853 {
+            dop853::STAGES * n
+        } else {
+            0
+        };
         Stepper {
             x1: z(),
             v1: z(),
@@ -40,13 +54,15 @@ impl Stepper {
             an: z(),
             kv: [z(), z(), z()],
             kx: [z(), z(), z()],
+            sv: vec![0.0; stages],
+            sa: vec![0.0; stages],
         }
     }
 
     /// Advances `(x0, v0, a0)` at `t0` by `h`. `ag0`, `ag1` are the ground accelerations at `t0`
-    /// and `t0 + h`. `a0` must be the method's acceleration state (for RK4 and Newmark the
-    /// acceleration of the state; Wilson θ carries its own). Returns `false` if a mass matrix was
-    /// not positive definite.
+    /// and `t0 + h`. `a0` must be the method's acceleration state (for RK4, DOP853 and Newmark
+    /// the acceleration of the state; Wilson θ carries its own). Returns `false` if a mass matrix
+    /// was not positive definite.
     #[allow(clippy::too_many_arguments)]
     pub fn step(
         &mut self,
@@ -148,7 +164,74 @@ impl Stepper {
                 );
                 ok
             }
+            Integrator::Dop853 => self.dop853(dynm, open, statuses, motion, t0, h, ag1, x0, v0, a0),
         }
+    }
+
+    /// One step of the eighth-order Dormand–Prince method ([`dop853`]).
+    #[allow(clippy::too_many_arguments)]
+    fn dop853(
+        &mut self,
+        dynm: &mut Dynamics,
+        open: &[usize],
+        statuses: &[Status],
+        motion: &dyn GroundMotion,
+        t0: f64,
+        h: f64,
+        ag1: f64,
+        x0: &[f64],
+        v0: &[f64],
+        a0: &[f64],
+    ) -> bool {
+        let k = open.len();
+        let (sv, sa) = (&mut self.sv, &mut self.sa);
+        sv[..k].copy_from_slice(v0);
+        sa[..k].copy_from_slice(a0);
+        let mut ok = true;
+        for i in 1..dop853::STAGES {
+            let row = dop853::A[i];
+            for r in 0..k {
+                let (mut dx, mut dv) = (0.0, 0.0);
+                for &(j, a) in row {
+                    dx += a * sv[j * k + r];
+                    dv += a * sa[j * k + r];
+                }
+                self.xs[r] = x0[r] + h * dx;
+                sv[i * k + r] = v0[r] + h * dv;
+            }
+            let c = dop853::C[i];
+            let ag = if c == 1.0 {
+                ag1
+            } else {
+                motion.acceleration(t0 + c * h)
+            };
+            ok &= dynm.accel(
+                open,
+                statuses,
+                ag,
+                &self.xs[..k],
+                &sv[i * k..(i + 1) * k],
+                &mut sa[i * k..(i + 1) * k],
+            );
+        }
+        for r in 0..k {
+            let (mut dx, mut dv) = (0.0, 0.0);
+            for &(j, b) in &dop853::B {
+                dx += b * sv[j * k + r];
+                dv += b * sa[j * k + r];
+            }
+            self.x1[r] = x0[r] + h * dx;
+            self.v1[r] = v0[r] + h * dv;
+        }
+        ok &= dynm.accel(
+            open,
+            statuses,
+            ag1,
+            &self.x1[..k],
+            &self.v1[..k],
+            &mut self.a1[..k],
+        );
+        ok
     }
 
     /// Solves `a = f(ag, x0 + τ v0 + τ² ((1 − 2β') a0 ... ))` at the collocation point `τ`:
