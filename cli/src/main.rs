@@ -7,6 +7,13 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand};
 
 mod args;
+/// The impact and opening models allocate a few small vectors per event, and sweeps of
+/// event-heavy records spent a quarter of their time in glibc's allocator; with mimalloc the OAS
+/// of Imperial Valley H-DLT262 takes 10 % less time, the bundled record's 15 % less (same
+/// results).
+#[global_allocator]
+static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 mod bench_cmd;
 mod design_cmd;
 mod output;
