@@ -32,6 +32,7 @@ The blocks start tilted and at rest with gravity applied statically (the tilt he
 rotation), so that the contact springs do not ring from a suddenly applied weight.
 """
 import ctypes
+import json
 import math
 import os
 import subprocess
@@ -512,16 +513,29 @@ def main():
         check(f"event {i + 1} as the C harness", same, f"{e['kind']} {e['interface']} {e['after']}")
         if e["kind"] == "opening":
             check(f"event {i + 1}: the library opens what OpenSees opened", e["library"] == e["after"], f"{e['library']}")
-    # Times. The opening's onset in the penalty model is found late: the corner must lift by
-    # 1e-6 m to be told from the springs' ringing, and is back-dated to its last compression,
-    # which the ringing itself delays (measured: 3.1 ms late). The next two impacts follow within
-    # 2 ms. After the lower block's first impact (events 4, 5: the upper block rocking on the
-    # rocking lower one) OpenSees runs 12-14 ms behind the rigid model: printed above, not
-    # asserted -- not yet explained (see docs/opensees.md).
+    # Times against the C harness (thesis Eq. 6). The opening's onset in the penalty model is found
+    # late: the corner must lift by 1e-6 m to be told from the springs' ringing, and is back-dated
+    # to its last compression, which the ringing itself delays (measured: 3.1 ms late). The next
+    # two impacts follow within 2 ms. Events 4, 5 (the upper block rocking on the rocking lower
+    # one) are 12-14 ms later in OpenSees than in Eq. 6, which drops the velocity terms: they are
+    # compared with the exact Lagrangian equations below instead.
     for i, tol in [(0, 5e-3), (1, 2e-3), (2, 2e-3)]:
         e = events[i] if i < len(events) else {"t": float("nan")}
         check(f"event {i + 1} time vs C harness (within {tol * 1e3:.0f} ms)", abs(e["t"] - ref[i]["t"]) <= tol,
               f"{e['t']:.5f} vs {ref[i]['t']:.5f}")
+    # Against the Rust driver with the exact velocity terms (OpenSees's corotational blocks have
+    # them): every event, impacts within 2 ms (measured 0.03-0.7 ms), the opening within 5 ms
+    # (measured 3.1 ms early: the onset of a lift in the penalty model is not sharp).
+    exact = [json.loads(line) for line in Path(sys.argv[3]).read_text().splitlines() if line.strip()]
+    exact = [e for e in exact if e["kind"] in ("opening", "impact")]
+    for i, e in enumerate(events):
+        x = exact[i] if i < len(exact) else {"kind": "?", "t": float("nan"), "interface": -1, "statuses_after": []}
+        after = x["statuses_after"]  # -1 / 0 / 1 as here
+        tol = 5e-3 if e["kind"] == "opening" else 2e-3
+        same = (e["kind"], e["interface"], e["after"]) == (x["kind"], x["interface"], after)
+        check(f"event {i + 1} as the exact-terms driver", same, f"{x['kind']} {x['interface']} {after}")
+        check(f"event {i + 1} time vs exact-terms driver (within {tol * 1e3:.0f} ms)", abs(e["t"] - x["t"]) <= tol,
+              f"{e['t']:.5f} vs {x['t']:.5f} ({(e['t'] - x['t']) * 1e3:+.2f} ms)")
     check("5 events", len(events) == 5, f"{len(events)}")
     print(f"{'FAILED' if failures else 'OpenSees agrees'} ({failures} failures)")
     return 1 if failures else 0

@@ -4,7 +4,8 @@
 # the new configuration and velocities from OpenSees's own mass matrix, and at every opening it
 # must pick what OpenSees did. Compared with Housner's exact ratio and with the C harness
 # (c_examples/opensees_style_harness.c, itself checked against the Rust driver by
-# tests/harness_vs_driver.rs). Exits 0 on success.
+# tests/harness_vs_driver.rs, thesis Eq. 6) and with the Rust driver on the exact Lagrangian
+# equations, which OpenSees's corotational blocks also integrate. Exits 0 on success.
 #
 # openseespy is a test-only dependency (its licence forbids redistribution): it lives in
 # tests/opensees/.venv, created here, and nowhere in the library. openseespy 3.7.1.2 has wheels
@@ -24,9 +25,29 @@ mkdir -p "$root/target/c_examples"
 exe="$root/target/c_examples/opensees_style_harness"
 cc -std=c99 -O2 -I"$root/include" "$root/c_examples/opensees_style_harness.c" -o "$exe" \
     -L"$root/target/release" -lrocking -lm -Wl,-rpath,"$root/target/release"
+# The rigid reference with the exact Lagrangian equations (velocity terms), which OpenSees's
+# corotational blocks integrate too: the thesis 4.2 scene of the harness (scene c), DOP853.
+cli="$root/target/release/rocking"
+[ -x "$cli" ] || (cd "$root" && cargo build --release -p rocking-cli)
+exact="$root/target/opensees_exact_4_2"
+mkdir -p "$exact"
+cat > "$exact/scene.json" <<'JSON'
+{
+  "title": "Thesis 4.2 as harness scene c, exact velocity terms",
+  "blocks": [
+    {"width": 0.1, "height": 0.3, "mass": 16.2, "contact_width": 0.096},
+    {"width": 0.1, "height": 0.3, "mass": 16.2, "contact_width": 0.096}
+  ],
+  "initial_angles": [0.0, -0.153],
+  "excitation": {"type": "none"},
+  "impacts": 2, "duration": 0.35, "dt": 0.0005,
+  "integrator": "dop853", "locator": "hermite", "exact_velocity_terms": true
+}
+JSON
+"$cli" simulate "$exact/scene.json" --out "$exact" > /dev/null
 # OpenSees prints a solver warning when GimmeMCK's analyze() meets the singular mass matrix
 # (massless rotations) and "Process 0 Terminating" at exit: both harmless, filtered.
-"$here/.venv/bin/python" "$here/rocking_opensees.py" "$lib" "$exe" 2>&1 \
+"$here/.venv/bin/python" "$here/rocking_opensees.py" "$lib" "$exe" "$exact/events.jsonl" 2>&1 \
     | grep -v -e "FullGenLinLapackSolver::solve() -factorization failed" -e "^Process 0 Terminating" \
     ; status=${PIPESTATUS[0]}
 echo "tests/opensees/run.sh: exit ${status} after ${SECONDS} s"
