@@ -1042,9 +1042,6 @@ pub fn oas(
     record
         .validate()
         .map_err(|e| invalid("record", e.to_string()))?;
-    if record.pga().is_nan() || record.pga() <= 0.0 {
-        return Err(invalid("record", format!("`{}` has zero PGA", record.name)));
-    }
     let prepared = PreparedRecord::new(record)?;
     let levels = map_indexed(options.levels.len(), |k| {
         let r = search_level(&prepared, options.levels[k], options);

@@ -547,10 +547,8 @@ impl<'a> Engine<'a> {
             self.advance(t0, h, ag1, k)?;
             self.phi1.copy_from_slice(&self.phi);
             self.rates1.copy_from_slice(&self.rates);
-            for (i, &d) in self.open.iter().enumerate() {
-                self.phi1[d] = self.stepper.x1[i];
-                self.rates1[d] = self.stepper.v1[i];
-            }
+            self.stepper
+                .write_open(&self.open, &mut self.phi1, &mut self.rates1);
             let c = self.dynm.check(
                 &self.open,
                 &self.statuses,
@@ -780,10 +778,8 @@ impl<'a> Engine<'a> {
                     } else {
                         self.advance_to(t0, h, s)?;
                     }
-                    for (i, &d) in self.open.iter().enumerate() {
-                        self.phi[d] = self.stepper.x1[i];
-                        self.rates[d] = self.stepper.v1[i];
-                    }
+                    self.stepper
+                        .write_open(&self.open, &mut self.phi, &mut self.rates);
                 }
             }
         }
@@ -882,10 +878,8 @@ impl<'a> Engine<'a> {
         self.advance_to(t0, h, s)?;
         self.scratch_phi.copy_from_slice(&self.phi);
         self.scratch_rates.copy_from_slice(&self.rates);
-        for (i, &d) in self.open.iter().enumerate() {
-            self.scratch_phi[d] = self.stepper.x1[i];
-            self.scratch_rates[d] = self.stepper.v1[i];
-        }
+        self.stepper
+            .write_open(&self.open, &mut self.scratch_phi, &mut self.scratch_rates);
         let c = self.dynm.check(
             &self.open,
             &self.statuses,

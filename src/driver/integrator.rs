@@ -59,6 +59,15 @@ impl Stepper {
         }
     }
 
+    /// Writes the result of the last step (`x1`, `v1`, reduced to the `open` DOFs) into the full
+    /// DOF vectors `phi`, `rates`; the closed DOFs are left as they are.
+    pub fn write_open(&self, open: &[usize], phi: &mut [f64], rates: &mut [f64]) {
+        for (i, &d) in open.iter().enumerate() {
+            phi[d] = self.x1[i];
+            rates[d] = self.v1[i];
+        }
+    }
+
     /// Advances `(x0, v0, a0)` at `t0` by `h`. `ag0`, `ag1` are the ground accelerations at `t0`
     /// and `t0 + h`. `a0` must be the method's acceleration state (for RK4, DOP853 and Newmark
     /// the acceleration of the state; Wilson θ carries its own). Returns `false` if a mass matrix
