@@ -882,6 +882,16 @@ pub fn bundled_synthetic_at2() -> Result<String, RecordError> {
     ))
 }
 
+/// The bundled `examples/records/synthetic.AT2`, for the crate's tests (spectra, driver).
+#[cfg(test)]
+pub(crate) fn bundled_record() -> Record {
+    parse_at2(
+        include_str!("../examples/records/synthetic.AT2"),
+        "synthetic",
+    )
+    .unwrap()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

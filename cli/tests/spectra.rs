@@ -93,18 +93,16 @@ fn design_width_reproduces_the_pier_example() {
 fn spectra_bench_compares_with_full_runs() {
     let out = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("bench_spectra.md");
     let _ = std::fs::remove_file(&out);
-    let run = Command::new(env!("CARGO_BIN_EXE_rocking"))
-        .args(["bench", "spectra", "--compare", "--out"])
-        .arg(&out)
-        .output()
-        .unwrap();
-    assert!(
-        run.status.success(),
-        "{}",
-        String::from_utf8_lossy(&run.stderr)
-    );
+    let (ok, stdout, err) = rocking(&[
+        "bench",
+        "spectra",
+        "--compare",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(ok, "{err}");
     let text = std::fs::read_to_string(&out).unwrap();
-    assert_eq!(text, String::from_utf8_lossy(&run.stdout));
+    assert_eq!(text, stdout);
     let row = text
         .lines()
         .find(|l| l.starts_with("| synthetic (bundled)"))

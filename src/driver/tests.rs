@@ -730,8 +730,7 @@ struct BundledRecord {
 
 impl BundledRecord {
     fn new(pga: f64) -> BundledRecord {
-        let text = include_str!("../../examples/records/synthetic.AT2");
-        let raw = crate::records::parse_at2(text, "synthetic").unwrap();
+        let raw = crate::records::bundled_record();
         let record = raw.scaled(pga / raw.pga());
         let table = record.impulse_table();
         BundledRecord { record, table }

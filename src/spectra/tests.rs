@@ -1,10 +1,5 @@
 use super::*;
-use crate::records::{parse_at2, Record};
-
-fn bundled() -> Record {
-    let text = include_str!("../../examples/records/synthetic.AT2");
-    parse_at2(text, "synthetic").unwrap()
-}
+use crate::records::{bundled_record, Record};
 
 /// A small OAS grid for tests: 16 levels from 1 to 10, 40 sizes from 1000 m to 0.1 m.
 fn small_grid() -> OasOptions {
@@ -118,7 +113,7 @@ fn monolith_is_more_vulnerable_than_two_or_three_blocks() {
 
 #[test]
 fn oas_is_deterministic_and_thread_independent() {
-    let record = bundled();
+    let record = bundled_record();
     let o = small_grid();
     let a = oas(&record, &o, None).unwrap();
     let b = oas(&record, &o, None).unwrap();
@@ -143,7 +138,7 @@ fn oas_is_deterministic_and_thread_independent() {
 /// Eq. 21 (both forms), 29 and 30 with the parameters of the OAS are conservative on it.
 #[test]
 fn simplified_spectra_are_conservative_on_the_bundled_record() {
-    let record = bundled();
+    let record = bundled_record();
     let a = oas(&record, &small_grid(), None).unwrap();
     let s = a.summary();
     let t1 = s.t1.unwrap();
@@ -156,7 +151,7 @@ fn simplified_spectra_are_conservative_on_the_bundled_record() {
 
 #[test]
 fn bisection_finds_an_unsafe_size_at_every_level_the_scan_does() {
-    let record = bundled();
+    let record = bundled_record();
     let scan = oas(&record, &small_grid(), None).unwrap();
     let bis = oas(
         &record,
@@ -181,7 +176,7 @@ fn bisection_finds_an_unsafe_size_at_every_level_the_scan_does() {
 
 #[test]
 fn fit_is_a_supporting_line() {
-    let record = bundled();
+    let record = bundled_record();
     let a = oas(&record, &small_grid(), None).unwrap();
     let fit = a.fit().unwrap();
     for q in a.boundary() {
@@ -196,7 +191,7 @@ fn fit_is_a_supporting_line() {
 /// (`docs/spectra.md` has the study on the thesis's grid, down to a sixteenth).
 #[test]
 fn t1_converged_in_dt() {
-    let record = bundled();
+    let record = bundled_record();
     let t1: Vec<f64> = [1.0, 0.5, 0.25]
         .iter()
         .map(|&f| {
@@ -233,7 +228,7 @@ fn verdicts_with_and_without_energy_bound(record: &Record, grid: &OasOptions) {
 /// whole run at every point of a grid, not only on the OAS boundary.
 #[test]
 fn oas_energy_bound_changes_nothing() {
-    let record = bundled();
+    let record = bundled_record();
     let grid = OasOptions {
         levels: linear_levels(1.0, 10.0, 10),
         sizes: log_sizes(1000.0, 0.1, 30),
