@@ -54,10 +54,7 @@ fn timed_oas(record: &Record, options: &OasOptions) -> Result<(spectra::Oas, f64
 /// Runs the benchmark and prints the report (Markdown) on stdout.
 pub fn run(args: &SpectraBenchArgs) -> Result<(), String> {
     if let Some(n) = args.threads {
-        rayon::ThreadPoolBuilder::new()
-            .num_threads(n)
-            .build_global()
-            .map_err(|e| format!("--threads: {e}"))?;
+        crate::spectra_cmd::set_threads(n);
     }
     let mut records = Vec::new();
     if args.records.is_empty() {

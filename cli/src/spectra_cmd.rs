@@ -91,13 +91,17 @@ fn oas_options(a: &Args) -> Result<OasOptions, String> {
     Ok(o)
 }
 
+/// Sizes rayon's global pool for the sweeps (`--threads N`). Results do not depend on it; only
+/// the first call in a process can set the pool, later ones are ignored.
+pub fn set_threads(n: usize) {
+    let _ = rayon::ThreadPoolBuilder::new()
+        .num_threads(n)
+        .build_global();
+}
+
 fn sweep_common(a: &Args, s: &mut SweepOptions) -> Result<(), String> {
     if let Some(n) = a.str("threads") {
-        let n: usize = n.parse().map_err(|_| format!("--threads: bad count {n}"))?;
-        // Results do not depend on it; only the first call can set the global pool.
-        let _ = rayon::ThreadPoolBuilder::new()
-            .num_threads(n)
-            .build_global();
+        set_threads(n.parse().map_err(|_| format!("--threads: bad count {n}"))?);
     }
     s.simulation.model.n_impacts = a.usize_or("impacts", 1)? as u32;
     s.time_step = s.time_step.scaled(a.f64_or("dt-factor", 1.0)?);
