@@ -476,11 +476,7 @@ impl<'a> Engine<'a> {
                     let s = match opts.locator {
                         EventLocator::Linear => linear_opening(&self.margin0, &self.dynm.margin),
                         EventLocator::Hermite => {
-                            let g0 = self
-                                .margin0
-                                .iter()
-                                .copied()
-                                .fold(f64::NEG_INFINITY, f64::max);
+                            let g0 = self.largest_margin0();
                             if g0 > 0.0 {
                                 0.0
                             } else {
@@ -647,6 +643,14 @@ impl<'a> Engine<'a> {
         }
     }
 
+    /// Largest opening margin at the start of the step (`> 0`: a reaction test already fails).
+    fn largest_margin0(&self) -> f64 {
+        self.margin0
+            .iter()
+            .copied()
+            .fold(f64::NEG_INFINITY, f64::max)
+    }
+
     /// The energy bound of [`SimulationOptions::stop_when_safe`] at the current state.
     fn cannot_tip(&mut self) -> bool {
         let Some((k, limit)) = self.safety_bound else {
@@ -676,11 +680,7 @@ impl<'a> Engine<'a> {
     /// Fraction of the step where the opening test first fails, by Illinois on the largest
     /// margin evaluated on the Hermite-interpolated state.
     fn hermite_opening(&mut self, t0: f64, h: f64, g1: f64) -> f64 {
-        let g0 = self
-            .margin0
-            .iter()
-            .copied()
-            .fold(f64::NEG_INFINITY, f64::max);
+        let g0 = self.largest_margin0();
         if g0 > 0.0 {
             return 0.0;
         }
@@ -906,11 +906,7 @@ impl<'a> Engine<'a> {
         s_est: f64,
         margin1: f64,
     ) -> Result<f64, DriverError> {
-        let g0 = self
-            .margin0
-            .iter()
-            .copied()
-            .fold(f64::NEG_INFINITY, f64::max);
+        let g0 = self.largest_margin0();
         let fe = self.margin_at(t0, h, s_est)?;
         let after = fe > 0.0;
         let (mut a, mut fa, mut b, mut fb) = if after {
