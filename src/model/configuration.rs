@@ -1,0 +1,201 @@
+//! Interface statuses (crack configurations) and the validation of model inputs.
+//!
+//! Status of interface `k`: −1 open about the RIGHT corner (only `phĭ_k` non-zero, `<= 0`),
+//! 0 closed, +1 open about the LEFT corner (only `phî_k` non-zero, `>= 0`) — SPEC §1.
+
+use crate::error::{ErrorKind, RockingError};
+
+/// Largest number of interfaces the models accept.
+pub const MAX_INTERFACES: usize = 4096;
+
+/// Status of one interface.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[repr(i8)]
+pub enum Status {
+    /// Open about the right corner: `phĭ_k` is the DOF, admissible `<= 0`.
+    OpenRight = -1,
+    /// Closed: both DOFs zero.
+    Closed = 0,
+    /// Open about the left corner: `phî_k` is the DOF, admissible `>= 0`.
+    OpenLeft = 1,
+}
+
+impl Status {
+    /// Decodes a C status value.
+    pub fn from_i8(v: i8) -> Option<Status> {
+        match v {
+            -1 => Some(Status::OpenRight),
+            0 => Some(Status::Closed),
+            1 => Some(Status::OpenLeft),
+            _ => None,
+        }
+    }
+
+    /// The C value.
+    pub fn as_i8(self) -> i8 {
+        self as i8
+    }
+
+    /// Whether the interface is open.
+    pub fn is_open(self) -> bool {
+        self != Status::Closed
+    }
+
+    /// Index in `0..2n` of the active DOF of interface `k` (None if closed).
+    pub fn dof(self, k: usize, n: usize) -> Option<usize> {
+        match self {
+            Status::OpenRight => Some(k),
+            Status::OpenLeft => Some(n + k),
+            Status::Closed => None,
+        }
+    }
+
+    /// Admissible sign of the DOF's angle (−1 for `phĭ`, +1 for `phî`, 0 when closed).
+    pub fn sign(self) -> f64 {
+        self.as_i8() as f64
+    }
+
+    /// The status whose DOF is `dof` of interface `dof % n`.
+    pub fn of_dof(dof: usize, n: usize) -> Status {
+        if dof < n {
+            Status::OpenRight
+        } else {
+            Status::OpenLeft
+        }
+    }
+}
+
+/// Decodes and checks a status array.
+pub fn decode_statuses(raw: &[i8]) -> Result<Vec<Status>, RockingError> {
+    raw.iter()
+        .enumerate()
+        .map(|(k, &v)| {
+            Status::from_i8(v).ok_or_else(|| {
+                RockingError::new(
+                    ErrorKind::InvalidStatus,
+                    format!("status[{k}] = {v}, expected -1, 0 or 1"),
+                )
+            })
+        })
+        .collect()
+}
+
+/// Encodes statuses into a C array.
+pub fn encode_statuses(statuses: &[Status], out: &mut [i8]) {
+    for (o, s) in out.iter_mut().zip(statuses) {
+        *o = s.as_i8();
+    }
+}
+
+/// The open DOFs (indices into `0..2n`) of a configuration, in interface order.
+pub fn open_dofs(statuses: &[Status]) -> Vec<usize> {
+    let n = statuses.len();
+    statuses
+        .iter()
+        .enumerate()
+        .filter_map(|(k, s)| s.dof(k, n))
+        .collect()
+}
+
+/// Checks the interface count.
+pub fn check_size(n: usize) -> Result<(), RockingError> {
+    if n == 0 {
+        return Err(RockingError::new(
+            ErrorKind::InvalidSize,
+            "n_interfaces is 0",
+        ));
+    }
+    if n > MAX_INTERFACES {
+        return Err(RockingError::new(
+            ErrorKind::InvalidSize,
+            format!("n_interfaces = {n} exceeds the supported maximum {MAX_INTERFACES}"),
+        ));
+    }
+    Ok(())
+}
+
+/// Checks that every value of `values` is finite.
+pub fn check_finite(name: &str, values: &[f64]) -> Result<(), RockingError> {
+    match values.iter().position(|v| !v.is_finite()) {
+        None => Ok(()),
+        Some(i) => Err(RockingError::new(
+            ErrorKind::NotFinite,
+            format!("{name}[{i}] = {}", values[i]),
+        )),
+    }
+}
+
+/// Checks that a `m × m` matrix is finite and symmetric: entry by entry,
+/// `|M_rc − M_cr| <= 1e-9 max(|M_rc|, |M_cr|) + 1e-14 √(|M_rr M_cc|)` — relative to the entry,
+/// with a floor at the natural size of an off-diagonal entry of a positive definite matrix, so
+/// that round-off of an FE code's `BᵀMB` passes and a real asymmetry never hides behind a
+/// large entry elsewhere in the matrix.
+pub fn check_symmetric(mass: &[f64], m: usize) -> Result<(), RockingError> {
+    check_finite("mass", mass)?;
+    for r in 0..m {
+        for c in r + 1..m {
+            let (a, b) = (mass[r * m + c], mass[c * m + r]);
+            let floor = (mass[r * m + r] * mass[c * m + c]).abs().sqrt();
+            if (a - b).abs() > 1e-9 * a.abs().max(b.abs()) + 1e-14 * floor {
+                return Err(RockingError::new(
+                    ErrorKind::NotSymmetric,
+                    format!("mass[{r}][{c}] = {a} but mass[{c}][{r}] = {b}"),
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Checks that a DOF vector (velocities or angles) is zero on every DOF that is not open.
+pub fn check_zero_off_configuration(
+    name: &str,
+    statuses: &[Status],
+    values: &[f64],
+    kind: ErrorKind,
+) -> Result<(), RockingError> {
+    let n = statuses.len();
+    for (i, &v) in values.iter().enumerate() {
+        let k = i % n;
+        if v != 0.0 && statuses[k].dof(k, n) != Some(i) {
+            let which = if i < n { "phĭ" } else { "phî" };
+            return Err(RockingError::new(
+                kind,
+                format!(
+                    "{name}[{i}] ({which}_{k}) = {v} but interface {k} has status {}",
+                    statuses[k].as_i8()
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Statuses implied by a DOF angle vector `phi` (length `2n`), checking that at most one DOF of
+/// each interface is non-zero and that it has the admissible sign.
+pub fn statuses_from_angles(phi: &[f64]) -> Result<Vec<Status>, RockingError> {
+    let n = phi.len() / 2;
+    (0..n)
+        .map(|k| match (phi[k], phi[n + k]) {
+            (r, l) if r == 0.0 && l == 0.0 => Ok(Status::Closed),
+            (r, l) if l == 0.0 && r < 0.0 => Ok(Status::OpenRight),
+            (r, l) if r == 0.0 && l > 0.0 => Ok(Status::OpenLeft),
+            (r, l) => Err(RockingError::new(
+                ErrorKind::InvalidAngles,
+                format!("interface {k}: phĭ = {r}, phî = {l} (need phĭ <= 0, phî >= 0, at most one non-zero)"),
+            )),
+        })
+        .collect()
+}
+
+/// Checks that a model's outputs are finite (finite but huge inputs can overflow).
+pub fn check_result(values: &[f64], energies: &[f64]) -> Result<(), RockingError> {
+    if values.iter().chain(energies).all(|v| v.is_finite()) {
+        Ok(())
+    } else {
+        Err(RockingError::new(
+            ErrorKind::Overflow,
+            "a velocity, acceleration or kinetic energy of the result is not finite",
+        ))
+    }
+}
