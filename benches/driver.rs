@@ -9,9 +9,10 @@
 use std::time::Instant;
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
-use rocking::column::Column;
-use rocking::driver::{overturns, simulate, FnMotion, GroundMotion, Recording, SimulationOptions};
-use rocking::records::{synthetic_record, Record, SYNTHETIC_SEED};
+use rocking::driver::{overturns, simulate, Recording, SimulationOptions};
+use rocking::ground::records::{synthetic_record, Record, SYNTHETIC_SEED};
+use rocking::ground::{FnMotion, GroundMotion};
+use rocking::model::column::Column;
 
 fn synthetic(t: f64) -> f64 {
     use std::f64::consts::TAU;

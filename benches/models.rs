@@ -4,8 +4,8 @@
 //! `cargo bench --bench models` (numbers go into docs/performance.md).
 
 use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criterion};
-use rocking::column::{Column, GRAVITY};
 use rocking::ffi::{rocking_impact_model, RockingOptions};
+use rocking::model::column::{Column, GRAVITY};
 use rocking::{impact_model, opening_model, ModelOptions, Solver, Status};
 use std::time::Duration;
 

@@ -22,9 +22,6 @@
 #include <stddef.h>
 #include <stdint.h>
 
-// Largest `γ` accepted for the Mavroeidis–Papageorgiou pulse.
-#define MP_GAMMA_MAX 100.0
-
 // ABI version of this header; bumped on any incompatible change of a signature or struct.
 #define ROCKING_ABI_VERSION 1
 
@@ -81,6 +78,9 @@
 
 // Internal error: a panic was caught at the boundary (a bug; please report it).
 #define ROCKING_ERR_INTERNAL 99
+
+// Largest `γ` accepted for the Mavroeidis–Papageorgiou pulse.
+#define MP_GAMMA_MAX 100.0
 
 // Kanai–Tajimi ground damping ratio ζ_g of [`synthetic_record`].
 #define SYNTHETIC_ZETA_G 0.6

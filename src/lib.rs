@@ -7,26 +7,17 @@
 // Index loops mirror the thesis's matrix notation (M[a][b], sums over blocks j >= k).
 #![allow(clippy::needless_range_loop)]
 
-pub mod cholesky;
-pub mod column;
-pub mod cone;
-pub mod configuration;
 pub mod design;
 pub mod driver;
-pub mod enumeration;
 pub mod error;
-pub mod excitation;
 pub mod ffi;
-pub mod impact;
-pub mod opening;
-pub mod projection;
-pub mod records;
+pub mod ground;
+pub mod model;
 pub mod samples;
-pub mod single_block;
 pub mod spectra;
 
-pub use cone::{ModelOptions, ModelReport, Solver};
-pub use configuration::Status;
 pub use error::{ErrorKind, RockingError};
-pub use impact::impact_model;
-pub use opening::{check_configuration, opening_model};
+pub use model::cone::{ModelOptions, ModelReport, Solver};
+pub use model::configuration::Status;
+pub use model::impact::impact_model;
+pub use model::opening::{check_configuration, opening_model};

@@ -1,8 +1,8 @@
 //! Canonical cases with known answers (SPEC §8), shared by tests, benches, examples and the C and
 //! Python smoke tests.
 
-use crate::column::{Block, Column, GRAVITY};
-use crate::configuration::Status;
+use crate::model::column::{Block, Column, GRAVITY};
+use crate::model::configuration::Status;
 
 /// Two granite blocks 0.1 × 0.3 m, 15 kg each (thesis 3.2.3, Eq. 10).
 pub fn two_granite_column() -> Column {

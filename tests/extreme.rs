@@ -6,9 +6,10 @@
 
 use std::time::Instant;
 
-use rocking::column::{Block, Column, GRAVITY};
-use rocking::driver::{simulate, FnMotion, NoMotion, Outcome, Recording, SimulationOptions};
-use rocking::single_block;
+use rocking::driver::{simulate, Outcome, Recording, SimulationOptions};
+use rocking::ground::{FnMotion, NoMotion};
+use rocking::model::column::{Block, Column, GRAVITY};
+use rocking::model::single_block;
 use rocking::{impact_model, opening_model, ModelOptions, Solver, Status};
 
 fn options(dt: f64, duration: f64) -> SimulationOptions {

@@ -70,8 +70,8 @@ fn call() -> impl Strategy<Value = Call> {
                 let mass = match kind {
                     // A real column: valid input, so the models actually run.
                     0 | 1 => {
-                        let col =
-                            rocking::column::Column::uniform(n, w, h * n as f64, 10.0).unwrap();
+                        let col = rocking::model::column::Column::uniform(n, w, h * n as f64, 10.0)
+                            .unwrap();
                         let mut mm = col.mass_matrix(&col.pose(&vec![0.0; m]));
                         if kind == 1 {
                             mm[0] = raw[0];
@@ -203,7 +203,7 @@ fn overflowing_sizes_are_refused_before_reading() {
         usize::MAX / 2 + 1,
         usize::MAX / 4,
         1 << 33,
-        rocking::configuration::MAX_INTERFACES + 1,
+        rocking::model::configuration::MAX_INTERFACES + 1,
     ] {
         let code = unsafe {
             rocking_impact_model(

@@ -6,7 +6,7 @@
 #![allow(clippy::needless_range_loop)]
 
 use proptest::prelude::*;
-use rocking::column::{Block, Column, GRAVITY};
+use rocking::model::column::{Block, Column, GRAVITY};
 use rocking::{impact_model, opening_model, ModelOptions, Solver, Status};
 
 #[derive(Clone, Debug)]

@@ -3,7 +3,7 @@
 
 use std::path::{Path, PathBuf};
 
-use rocking::records::read_at2;
+use rocking::ground::records::read_at2;
 use rocking::spectra::{linear_levels, log_sizes, oas, OasOptions};
 
 fn shared() -> Option<PathBuf> {

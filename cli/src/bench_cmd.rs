@@ -33,13 +33,14 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use rocking::column::{Block, Column, GRAVITY};
 use rocking::driver::reference::SingleBlockExact;
 use rocking::driver::{
-    self, EventKind, EventLocator, FnMotion, Integrator, Outcome, Recording, SimulationOptions,
+    self, EventKind, EventLocator, Integrator, Outcome, Recording, SimulationOptions,
 };
-use rocking::excitation::{Excitation, Pulse};
-use rocking::single_block::housner_mu;
+use rocking::ground::excitation::{Excitation, Pulse};
+use rocking::ground::FnMotion;
+use rocking::model::column::{Block, Column, GRAVITY};
+use rocking::model::single_block::housner_mu;
 use serde_json::Value;
 
 use crate::output::write_atomic;

@@ -3,8 +3,8 @@
 
 use std::process::ExitCode;
 
-use rocking::column::GRAVITY;
 use rocking::design::{self, Branch, ImpulseFactor, MassDistribution, Pier};
+use rocking::model::column::GRAVITY;
 use serde_json::json;
 
 use crate::args::Args;

@@ -13,11 +13,11 @@
 
 use std::path::{Path, PathBuf};
 
-use rocking::column::{Block, Column};
-use rocking::cone::{ModelOptions, Solver};
 use rocking::driver::{EventLocator, Integrator, Recording, SimulationOptions};
-use rocking::excitation::{Excitation, Pulse};
-use rocking::records::{self, PlainFormat};
+use rocking::ground::excitation::{Excitation, Pulse};
+use rocking::ground::records::{self, PlainFormat};
+use rocking::model::column::{Block, Column};
+use rocking::model::cone::{ModelOptions, Solver};
 use serde::Deserialize;
 
 /// One block, bottom to top.
@@ -215,7 +215,7 @@ pub fn build(spec: SceneSpec, base: &Path, name: &str) -> Result<Scene, SceneErr
         })
         .collect();
     let column = Column::new(blocks).map_err(|e| match e {
-        rocking::column::ColumnError::InvalidBlock {
+        rocking::model::column::ColumnError::InvalidBlock {
             block,
             field,
             value,
@@ -328,7 +328,7 @@ pub fn build(spec: SceneSpec, base: &Path, name: &str) -> Result<Scene, SceneErr
 }
 
 fn excitation(spec: &ExcitationSpec, base: &Path) -> Result<Excitation, SceneError> {
-    let pulse = |p: Result<Pulse, rocking::excitation::ExcitationError>| {
+    let pulse = |p: Result<Pulse, rocking::ground::excitation::ExcitationError>| {
         p.and_then(Excitation::pulse)
             .map_err(|e| err("excitation", e))
     };

@@ -8,7 +8,8 @@ use std::fmt::Write as _;
 use std::path::Path;
 use std::time::Instant;
 
-use rocking::driver::{self, Event, EventKind, FnMotion, Outcome, StopReason};
+use rocking::driver::{self, Event, EventKind, Outcome, StopReason};
+use rocking::ground::FnMotion;
 use rocking::{ModelReport, Status};
 use serde_json::{json, Value};
 

@@ -9,7 +9,7 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::time::Instant;
 
-use rocking::records::{parse_at2, read_record, PlainFormat, Record};
+use rocking::ground::records::{parse_at2, read_record, PlainFormat, Record};
 use rocking::spectra::{self, OasOptions};
 
 use crate::output::{progress_bar, write_atomic};

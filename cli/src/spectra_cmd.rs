@@ -9,7 +9,7 @@ use std::time::Instant;
 
 use indicatif::{ProgressBar, ProgressStyle};
 use rocking::driver::{EventLocator, Integrator};
-use rocking::records::{read_record, PlainFormat, Record};
+use rocking::ground::records::{read_record, PlainFormat, Record};
 use rocking::spectra::{
     self, column_of_size, linear_levels, log_sizes, Oas, OasLevel, OasOptions, PulseShape,
     SizeSearch, SweepOptions,

@@ -2,7 +2,7 @@
 
 use std::process::ExitCode;
 
-use rocking::column::{Block, Column, GRAVITY};
+use rocking::model::column::{Block, Column, GRAVITY};
 use rocking::{impact_model, opening_model, samples, ModelOptions, Solver, Status};
 
 /// One line of the comparison table; returns whether it matches to the printed digits.

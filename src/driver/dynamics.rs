@@ -9,9 +9,9 @@
 //!   (the centripetal force passes through the fixed pivot);
 //! - everything closed: the column is straight, `q = a_g Qa − g Qg` with constants.
 
-use crate::cholesky;
-use crate::column::{Column, Pose};
-use crate::configuration::Status;
+use crate::model::cholesky;
+use crate::model::column::{Column, Pose};
+use crate::model::configuration::Status;
 
 /// Rigid rotation of the part above interface `k_a` about the pivot of DOF `a` (straight column).
 #[derive(Clone, Copy, Debug, Default)]

@@ -4,14 +4,15 @@ use super::dynamics::Dynamics;
 use super::events::{hermite, hermite_crossing, hermite_rate, illinois, lock_dof, quintic};
 use super::integrator::Stepper;
 use super::{
-    DriverError, EnergyBalance, Event, EventKind, EventLocator, GroundMotion, History, Outcome,
-    Recording, SimulationOptions, StopReason,
+    DriverError, EnergyBalance, Event, EventKind, EventLocator, History, Outcome, Recording,
+    SimulationOptions, StopReason,
 };
-use crate::column::Column;
-use crate::cone::ModelReport;
-use crate::configuration::{open_dofs, Status};
 use crate::error::{ErrorKind, RockingError};
-use crate::impact::kinetic_energy;
+use crate::ground::GroundMotion;
+use crate::model::column::Column;
+use crate::model::cone::ModelReport;
+use crate::model::configuration::{open_dofs, Status};
+use crate::model::impact::kinetic_energy;
 use crate::{impact_model, opening_model};
 
 /// Share of `√E_tip` the energy bound of [`SimulationOptions::stop_when_safe`] may reach.

@@ -1,7 +1,7 @@
 //! Event location inside a step (linear and cubic Hermite interpolation, Illinois root finding)
 //! and the settling projection.
 
-use crate::cholesky;
+use crate::model::cholesky;
 
 /// Cubic Hermite interpolation of `y` on a step of length `h` at `s ∈ [0, 1]` from the values
 /// and derivatives at both ends.

@@ -13,8 +13,9 @@
 
 use super::dop853;
 use super::dynamics::Dynamics;
-use super::{GroundMotion, Integrator};
-use crate::configuration::Status;
+use super::Integrator;
+use crate::ground::GroundMotion;
+use crate::model::configuration::Status;
 
 const MAX_ITERATIONS: usize = 12;
 const ITERATION_TOLERANCE: f64 = 1e-6;

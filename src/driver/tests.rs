@@ -2,9 +2,10 @@
 
 use super::dynamics::Dynamics;
 use super::*;
-use crate::column::Block;
-use crate::configuration::Status;
-use crate::opening::check_configuration;
+use crate::ground::{FnMotion, NoMotion};
+use crate::model::column::Block;
+use crate::model::configuration::Status;
+use crate::model::opening::check_configuration;
 
 const G: f64 = GRAVITY;
 
@@ -206,7 +207,7 @@ fn reaction_test_agrees_with_check_configuration() {
                 }
             }
             let ag = (rnd() - 0.5) * 12.0;
-            let open = crate::configuration::open_dofs(&statuses);
+            let open = crate::model::configuration::open_dofs(&statuses);
             dynm.reset_scratch();
             let c = dynm.check(&open, &statuses, ag, &phi, &rates, false);
             let mut mass = vec![0.0; 36];
@@ -724,13 +725,13 @@ fn dop853_event_sequences_agree_with_rk4() {
 /// The bundled record scaled by `factor`, with the tail impulses of
 /// [`SimulationOptions::stop_when_safe`].
 struct BundledRecord {
-    record: crate::records::Record,
+    record: crate::ground::records::Record,
     table: Vec<f64>,
 }
 
 impl BundledRecord {
     fn new(pga: f64) -> BundledRecord {
-        let raw = crate::records::bundled_record();
+        let raw = crate::ground::records::bundled_record();
         let record = raw.scaled(pga / raw.pga());
         let table = record.impulse_table();
         BundledRecord { record, table }

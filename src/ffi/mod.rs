@@ -11,9 +11,9 @@ use std::cell::RefCell;
 use std::ffi::{c_char, CString};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
-use crate::cone::{ModelOptions, ModelReport, Solver};
-use crate::configuration::{self, Status};
 use crate::error::{ErrorKind, RockingError};
+use crate::model::cone::{ModelOptions, ModelReport, Solver};
+use crate::model::configuration::{self, Status};
 
 /// ABI version of this header; bumped on any incompatible change of a signature or struct.
 pub const ROCKING_ABI_VERSION: u32 = 1;
@@ -445,7 +445,7 @@ pub unsafe extern "C" fn rocking_column_mass_matrix(
         }
         configuration::statuses_from_angles(&phi)?;
         let blocks = (0..n_blocks)
-            .map(|k| crate::column::Block {
+            .map(|k| crate::model::column::Block {
                 width: w[k],
                 height: h[k],
                 mass: bm[k],
@@ -453,7 +453,7 @@ pub unsafe extern "C" fn rocking_column_mass_matrix(
                 contact_width: contact.as_ref().map(|c| c[k]),
             })
             .collect();
-        let column = crate::column::Column::new(blocks)
+        let column = crate::model::column::Column::new(blocks)
             .map_err(|e| RockingError::new(ErrorKind::InvalidGeometry, e.to_string()))?;
         let pose = column.pose(&phi);
         let mass = column.mass_matrix(&pose);
@@ -516,7 +516,7 @@ pub unsafe extern "C" fn rocking_reduce(
         };
         let mut rm = vec![0.0; n_reduced * n_reduced];
         let mut rl = vec![0.0; n_reduced];
-        crate::column::reduce(n_nodal, n_reduced, &mass, &b, &p, &mut rm, &mut rl);
+        crate::model::column::reduce(n_nodal, n_reduced, &mass, &b, &p, &mut rm, &mut rl);
         configuration::check_result(&rm, &rl)?;
         write_array(reduced_mass, &rm);
         if want_load {

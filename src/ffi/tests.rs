@@ -214,7 +214,7 @@ fn impact_error_classes() {
 
 #[test]
 fn enumeration_limit_is_a_positive_code() {
-    let col = crate::column::Column::uniform(14, 1.0, 14.0, 14.0).unwrap();
+    let col = crate::model::column::Column::uniform(14, 1.0, 14.0, 14.0).unwrap();
     let mut phi = vec![0.0; 28];
     phi[13] = -0.01;
     let mass = col.mass_matrix(&col.pose(&phi));
@@ -568,7 +568,10 @@ fn codes_and_messages() {
         .to_str()
         .unwrap();
     assert_eq!(unknown, "unknown status code");
-    assert_eq!(ROCKING_MAX_INTERFACES, crate::configuration::MAX_INTERFACES);
+    assert_eq!(
+        ROCKING_MAX_INTERFACES,
+        crate::model::configuration::MAX_INTERFACES
+    );
     assert_eq!(rocking_abi_version(), ROCKING_ABI_VERSION);
     let v = unsafe { CStr::from_ptr(rocking_version()) }
         .to_str()

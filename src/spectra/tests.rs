@@ -1,5 +1,5 @@
 use super::*;
-use crate::records::{bundled_record, Record};
+use crate::ground::records::{bundled_record, Record};
 
 /// A small OAS grid for tests: 16 levels from 1 to 10, 40 sizes from 1000 m to 0.1 m.
 fn small_grid() -> OasOptions {
@@ -260,7 +260,7 @@ fn oas_energy_bound_changes_nothing_on_shared_records() {
         "nearfield_pulse/RSN292_ITALY_A-STU_313.AT2",
     ] {
         let path = shared.join("records/fema-p695").join(file);
-        let Ok(record) = crate::records::read_at2(&path) else {
+        let Ok(record) = crate::ground::records::read_at2(&path) else {
             println!("skipped: {} is absent", path.display());
             continue;
         };

@@ -3,11 +3,11 @@
 
 use std::collections::BTreeMap;
 
-use rocking::column::{Block, Column};
 use rocking::driver::{
-    simulate, EventKind, EventLocator, FnMotion, GroundMotion, Integrator, NoMotion,
-    SimulationOptions, StopReason,
+    simulate, EventKind, EventLocator, Integrator, SimulationOptions, StopReason,
 };
+use rocking::ground::{FnMotion, GroundMotion, NoMotion};
+use rocking::model::column::{Block, Column};
 use rocking::Status;
 
 /// One event as the harness prints it (`EVENT scene=… kind=… t=… interface=… after=…`).
