@@ -15,6 +15,7 @@ pub mod ground;
 pub mod model;
 pub mod samples;
 pub mod spectra;
+pub mod validate;
 
 pub use error::{ErrorKind, RockingError};
 pub use model::cone::{ModelOptions, ModelReport, Solver};

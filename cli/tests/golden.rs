@@ -82,15 +82,27 @@ fn t1_of_shared_records_is_unchanged() {
         println!("skipped: {} not found", far.display());
         return;
     }
-    let names = ["RSN953_NORTHR_MUL009", "RSN1158_KOCAELI_DZC180", "RSN960_NORTHR_LOS000"];
+    let names = [
+        "RSN953_NORTHR_MUL009",
+        "RSN1158_KOCAELI_DZC180",
+        "RSN960_NORTHR_LOS000",
+    ];
     let mut args = vec!["t1".to_string(), "--json".to_string()];
-    args.extend(names.iter().map(|n| format!("../shared/records/fema-p695/farfield/{n}.AT2")));
+    args.extend(
+        names
+            .iter()
+            .map(|n| format!("../shared/records/fema-p695/farfield/{n}.AT2")),
+    );
     let out = Command::new(bin())
         .args(&args)
         .current_dir(root())
         .output()
         .unwrap();
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let got: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     let want: serde_json::Value = serde_json::from_str(
         &std::fs::read_to_string(root().join("tests/golden/t1-farfield.json")).unwrap(),

@@ -1,0 +1,89 @@
+//! One place for the range checks of plain numeric inputs (lengths, masses, time steps, levels
+//! …): each returns the value or an [`InvalidValue`] that names the field, so every error type of
+//! the crate reports a bad input the same way. The C ABI's own checks (pointers, sizes, NaN in
+//! arrays) are in `model::configuration` and `ffi`.
+
+use std::fmt;
+
+/// A numeric input out of its range: the field (as the user wrote it), the value, and the rule.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("{field} = {value}: {rule}")]
+pub struct InvalidValue {
+    /// The field or argument, e.g. `"blocks[2].width"` or `"dt"`.
+    pub field: String,
+    /// The value, printed.
+    pub value: String,
+    /// What it must be, e.g. `"must be a finite number greater than zero"`.
+    pub rule: &'static str,
+}
+
+impl InvalidValue {
+    /// An invalid value of any printable type.
+    pub fn new(field: impl Into<String>, value: impl fmt::Debug, rule: &'static str) -> Self {
+        InvalidValue {
+            field: field.into(),
+            value: format!("{value:?}"),
+            rule,
+        }
+    }
+}
+
+/// `v` finite and `> 0`.
+pub fn positive(field: impl Into<String>, v: f64) -> Result<f64, InvalidValue> {
+    if v.is_finite() && v > 0.0 {
+        Ok(v)
+    } else {
+        Err(InvalidValue::new(
+            field,
+            v,
+            "must be a finite number greater than zero",
+        ))
+    }
+}
+
+/// `v` finite and `>= 0`.
+pub fn non_negative(field: impl Into<String>, v: f64) -> Result<f64, InvalidValue> {
+    if v.is_finite() && v >= 0.0 {
+        Ok(v)
+    } else {
+        Err(InvalidValue::new(field, v, "must be a finite number >= 0"))
+    }
+}
+
+/// `v` finite.
+pub fn finite(field: impl Into<String>, v: f64) -> Result<f64, InvalidValue> {
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(InvalidValue::new(field, v, "must be a finite number"))
+    }
+}
+
+/// Every value of `values` finite and `> 0` (the field is reported as `field[i]`).
+pub fn all_positive(field: &str, values: &[f64]) -> Result<(), InvalidValue> {
+    for (i, &v) in values.iter().enumerate() {
+        positive(format!("{field}[{i}]"), v)?;
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_the_field_and_the_rule() {
+        assert_eq!(positive("dt", 0.5), Ok(0.5));
+        let e = positive("dt", 0.0).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "dt = 0.0: must be a finite number greater than zero"
+        );
+        assert!(positive("dt", f64::NAN).is_err());
+        assert!(non_negative("duration", 0.0).is_ok());
+        assert!(non_negative("duration", -1.0).is_err());
+        assert!(finite("x", f64::INFINITY).is_err());
+        let e = all_positive("widths", &[1.0, -2.0]).unwrap_err();
+        assert_eq!(e.field, "widths[1]");
+    }
+}
