@@ -12,6 +12,7 @@
 use crate::model::cholesky;
 use crate::model::column::{Column, Pose};
 use crate::model::configuration::Status;
+use crate::model::opening::{reaction_margins, AllClosed, Configuration};
 
 /// Rigid rotation of the part above interface `k_a` about the pivot of DOF `a` (straight column).
 #[derive(Clone, Copy, Debug, Default)]
@@ -275,21 +276,21 @@ impl<'a> Dynamics<'a> {
         };
         match open.len() {
             0 => {
-                // Straight column moving with the ground.
-                let mut bmax = 0.0_f64;
+                // Straight column moving with the ground: constant `M`, `q = a_g Qa − g Qg`.
                 for d in 0..2 * n {
-                    let q = ag * self.straight_qa[d] - g * self.straight_qg[d];
-                    self.q[d] = q;
-                    bmax = bmax.max(q.abs() * self.straight_isq[d]);
-                }
-                let thr = self.tol * bmax;
-                for d in 0..2 * n {
-                    let sigma = if d < n { -1.0 } else { 1.0 };
-                    let m = sigma * self.q[d] * self.straight_isq[d] - thr;
-                    self.margin[d] = m;
-                    out.max_margin = out.max_margin.max(m);
+                    self.q[d] = ag * self.straight_qa[d] - g * self.straight_qg[d];
                     self.acc_full[d] = 0.0;
                 }
+                out.max_margin = reaction_margins(
+                    &AllClosed(n),
+                    &[],
+                    &self.q,
+                    &self.straight_isq,
+                    &self.acc_full,
+                    |_, _| 0.0,
+                    self.tol,
+                    &mut self.margin,
+                );
                 self.block_angles.iter_mut().for_each(|v| *v = 0.0);
                 // N = S0 g, V = S0 a_g on every interface: the lowest decides.
                 if forces && ag.abs() > self.friction * g {
@@ -362,16 +363,10 @@ impl<'a> Dynamics<'a> {
         for (i, &d) in open.iter().enumerate() {
             self.acc_full[d] = self.rhs[i];
         }
-        // Loads and Jacobi scales of every generator (closed: both corners; open: its DOF).
-        let mut bmax = 0.0_f64;
+        // Loads and Jacobi scales of every generator (closed: both corners; open: its DOF),
+        // then the reaction test.
         for d in 0..2 * n {
-            let k = d % n;
-            let generator = match statuses[k].dof(k, n) {
-                None => true,
-                Some(a) => a == d,
-            };
-            if !generator {
-                self.isq[d] = 0.0;
+            if !statuses.generator(d) {
                 continue;
             }
             let mut q = self.pose.load_entry(d, ag, g);
@@ -380,24 +375,18 @@ impl<'a> Dynamics<'a> {
             }
             self.q[d] = q;
             self.isq[d] = 1.0 / self.pose.mass_entry(d, d).sqrt();
-            bmax = bmax.max(q.abs() * self.isq[d]);
         }
-        let thr = self.tol * bmax;
-        for d in 0..2 * n {
-            let k = d % n;
-            if statuses[k].is_open() {
-                self.margin[d] = f64::NEG_INFINITY;
-                continue;
-            }
-            let ma: f64 = open
-                .iter()
-                .map(|&f| self.pose.mass_entry(d, f) * self.acc_full[f])
-                .sum();
-            let sigma = if d < n { -1.0 } else { 1.0 };
-            let m = sigma * (self.q[d] - ma) * self.isq[d] - thr;
-            self.margin[d] = m;
-            out.max_margin = out.max_margin.max(m);
-        }
+        let pose = &self.pose;
+        out.max_margin = reaction_margins(
+            statuses,
+            open,
+            &self.q,
+            &self.isq,
+            &self.acc_full,
+            |d, f| pose.mass_entry(d, f),
+            self.tol,
+            &mut self.margin,
+        );
         let mut power = 0.0;
         for &f in open {
             power += self.pose.load_entry(f, ag, 0.0) * rates[f];
