@@ -35,7 +35,8 @@ use std::time::Instant;
 
 use rocking::driver::reference::SingleBlockExact;
 use rocking::driver::{
-    self, EventKind, EventLocator, Integrator, Outcome, Recording, SimulationOptions,
+    self, EventKind, EventLocator, InitialState, Integrator, Outcome, PhysicsOptions, Recording,
+    SimulationOptions, StoppingOptions,
 };
 use rocking::ground::excitation::{Excitation, Pulse};
 use rocking::ground::FnMotion;
@@ -104,12 +105,12 @@ impl BenchScene {
         dt: f64,
     ) -> Result<Outcome, String> {
         let mut o = self.options.clone();
-        o.integrator = integrator;
-        o.locator = locator;
-        o.dt = dt;
+        o.stepping.integrator = integrator;
+        o.stepping.locator = locator;
+        o.stepping.dt = dt;
         // History about every 0.1 ms (the peak is refined between samples by cubic Hermite
         // interpolation, whose error at that spacing is far below every error measured here).
-        o.record = Recording {
+        o.recording = Recording {
             history_every: Some(((1e-4 / dt).round() as usize).max(1)),
             events: true,
         };
@@ -258,10 +259,18 @@ fn scene_a() -> BenchScene {
         column: Column::new(vec![Block::rectangle(2.0 * b, 2.0 * h, mass)]).unwrap(),
         excitation: Excitation::None,
         options: SimulationOptions {
-            duration,
-            friction: f64::INFINITY,
-            initial_angles: Some(vec![-theta0]),
-            settle_interval: Some(SETTLE_INTERVAL),
+            stopping: StoppingOptions {
+                duration,
+                settle_interval: Some(SETTLE_INTERVAL),
+                ..StoppingOptions::default()
+            },
+            physics: PhysicsOptions {
+                friction: f64::INFINITY,
+                ..PhysicsOptions::default()
+            },
+            initial: InitialState {
+                angles: Some(vec![-theta0]),
+            },
             ..SimulationOptions::default()
         },
         peak_after_first_impact: true,
@@ -303,9 +312,15 @@ fn scene_b() -> BenchScene {
         column: Column::new(vec![Block::rectangle(2.0 * b, 2.0 * h, mass)]).unwrap(),
         excitation: Excitation::pulse(Pulse::half_sine(amp, tp).unwrap()).unwrap(),
         options: SimulationOptions {
-            duration: SCENE_B_DURATION,
-            friction: f64::INFINITY,
-            settle_interval: Some(SETTLE_INTERVAL),
+            stopping: StoppingOptions {
+                duration: SCENE_B_DURATION,
+                settle_interval: Some(SETTLE_INTERVAL),
+                ..StoppingOptions::default()
+            },
+            physics: PhysicsOptions {
+                friction: f64::INFINITY,
+                ..PhysicsOptions::default()
+            },
             ..SimulationOptions::default()
         },
         peak_after_first_impact: false,
@@ -320,12 +335,18 @@ fn scene_c() -> BenchScene {
     ])
     .unwrap();
     let mut options = SimulationOptions {
-        duration: 0.5,
-        friction: f64::INFINITY,
-        settle_interval: Some(SETTLE_INTERVAL),
+        stopping: StoppingOptions {
+            duration: 0.5,
+            settle_interval: Some(SETTLE_INTERVAL),
+            ..StoppingOptions::default()
+        },
+        physics: PhysicsOptions {
+            friction: f64::INFINITY,
+            ..PhysicsOptions::default()
+        },
         ..SimulationOptions::default()
     };
-    options.model.n_impacts = 2;
+    options.physics.model.n_impacts = 2;
     BenchScene {
         key: "c",
         title: "(c) three blocks 0.5 × 1.0, 0.4 × 0.8, 0.3 × 0.6 m, full sine 4 m/s² × 2 × 0.3 s, 2 impacts".into(),
@@ -766,11 +787,11 @@ fn peer_rows_for(
         ("width", blk.width),
         ("height", blk.height),
         ("mass", blk.mass),
-        ("duration", scene.options.duration),
+        ("duration", scene.options.stopping.duration),
         ("mu", housner_mu(0.5 * blk.height, 0.5 * blk.width)),
-        ("gravity", scene.options.gravity),
+        ("gravity", scene.options.physics.gravity),
     ];
-    if let Some(a) = &scene.options.initial_angles {
+    if let Some(a) = &scene.options.initial.angles {
         expected.push(("theta0", a[0]));
     }
     if let Excitation::Pulse(Pulse::HalfSines {
@@ -1148,12 +1169,12 @@ fn velocity_terms_section() -> Result<String, String> {
     for (scene, dt) in [(&two_scene, 1e-4), (&c, 1e-4)] {
         for (loc, lname) in locators() {
             let mut o = scene.options.clone();
-            o.dt = dt;
-            o.locator = loc;
-            o.integrator = Integrator::default();
+            o.stepping.dt = dt;
+            o.stepping.locator = loc;
+            o.stepping.integrator = Integrator::default();
             let run = |exact: bool| -> Result<Metrics, String> {
                 let mut o = o.clone();
-                o.exact_velocity_terms = exact;
+                o.physics.exact_velocity_terms = exact;
                 let exc = &scene.excitation;
                 let motion = FnMotion(|t| exc.acceleration(t), exc.end_time());
                 let out = driver::simulate(&scene.column, &motion, &o, None)
@@ -1188,8 +1209,8 @@ fn velocity_terms_section() -> Result<String, String> {
     let b = scene_b();
     let over = |amp: f64, exact: bool| -> Result<(bool, Metrics), String> {
         let mut o = b.options.clone();
-        o.exact_velocity_terms = exact;
-        o.dt = 1e-4;
+        o.physics.exact_velocity_terms = exact;
+        o.stepping.dt = 1e-4;
         let exc = Excitation::pulse(Pulse::half_sine(amp, SCENE_B_PULSE.1).unwrap()).unwrap();
         let motion = FnMotion(|t| exc.acceleration(t), exc.end_time());
         let out = driver::simulate(&b.column, &motion, &o, None).map_err(|e| e.to_string())?;

@@ -211,7 +211,7 @@ fn summary_json(scene: &Scene, path: &Path, o: &Outcome, wall: f64) -> Value {
             "potential_change": o.energy.potential_change,
             "residual": o.energy.residual(),
         },
-        "dt": scene.options.dt,
+        "dt": scene.options.stepping.dt,
         "wall_time_s": wall,
     })
 }

@@ -103,17 +103,17 @@ fn sweep_common(a: &Args, s: &mut SweepOptions) -> Result<(), String> {
     if let Some(n) = a.str("threads") {
         set_threads(n.parse().map_err(|_| format!("--threads: bad count {n}"))?);
     }
-    s.simulation.model.n_impacts = a.usize_or("impacts", 1)? as u32;
+    s.simulation.physics.model.n_impacts = a.usize_or("impacts", 1)? as u32;
     s.time_step = s.time_step.scaled(a.f64_or("dt-factor", 1.0)?);
     s.tail = a.f64_or("tail", s.tail)?;
     if a.flag("hermite") || a.flag("rk4") {
-        s.simulation.locator = EventLocator::Hermite;
+        s.simulation.stepping.locator = EventLocator::Hermite;
     }
     if a.flag("rk4") {
-        s.simulation.integrator = Integrator::Rk4;
+        s.simulation.stepping.integrator = Integrator::Rk4;
     }
     // Same verdicts either way (tested); only for checking that claim, or timing it.
-    s.simulation.stop_when_safe = !a.flag("full-runs");
+    s.simulation.stopping.stop_when_safe = !a.flag("full-runs");
     Ok(())
 }
 
@@ -155,7 +155,7 @@ fn oc(args: &[String]) -> Result<(), String> {
     .map_err(|e| e.to_string())?;
     let mut sweep = SweepOptions::default();
     sweep_common(&a, &mut sweep)?;
-    let mono = spectra::Monolith::of(&column, sweep.simulation.gravity);
+    let mono = spectra::Monolith::of(&column, sweep.simulation.physics.gravity);
     let ptp = log_sizes(
         a.f64_or("ptp-max", 10.0)?,
         a.f64_or("ptp-min", 0.1)?,

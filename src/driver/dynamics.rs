@@ -87,6 +87,10 @@ pub(crate) struct Dynamics<'a> {
     pub margin: Vec<f64>,
     /// Block rotations of the last check.
     pub block_angles: Vec<f64>,
+    /// The full `2n × 2n` mass matrix and load vector of the last [`Dynamics::assemble`], the
+    /// models' input.
+    pub system_mass: Vec<f64>,
+    pub system_load: Vec<f64>,
 }
 
 impl<'a> Dynamics<'a> {
@@ -151,6 +155,8 @@ impl<'a> Dynamics<'a> {
             acc_full: vec![0.0; m],
             margin: vec![f64::NEG_INFINITY; m],
             block_angles: vec![0.0; n],
+            system_mass: vec![0.0; m * m],
+            system_load: vec![0.0; m],
         }
     }
 
@@ -160,6 +166,16 @@ impl<'a> Dynamics<'a> {
             .iter()
             .map(|r| r.s0 * self.g * ((r.dx * r.dx + r.dy * r.dy).sqrt() - r.dy))
             .fold(f64::INFINITY, f64::min)
+    }
+
+    /// The largest `m R / √(2 I_P)` over the rigid rotations of the straight column: how fast
+    /// `√E` can grow per unit ground acceleration (the bound of
+    /// [`super::StoppingOptions::stop_when_safe`]).
+    pub fn energy_growth_bound(&self) -> f64 {
+        self.rigid
+            .iter()
+            .map(|r| r.s0 * (r.dx * r.dx + r.dy * r.dy).sqrt() * (0.5 * r.inv_ip).sqrt())
+            .fold(0.0, f64::max)
     }
 
     /// Accelerations of the open DOFs (reduced vectors `x`, `v`, output `out`, all of length
@@ -487,6 +503,15 @@ impl<'a> Dynamics<'a> {
         open.iter()
             .map(|&f| self.pose.load_entry(f, ag, 0.0) * rates[f])
             .sum()
+    }
+
+    /// [`Dynamics::full_system`] into `system_mass`, `system_load`.
+    pub fn assemble(&mut self, statuses: &[Status], ag: f64, phi: &[f64], rates: &[f64]) {
+        let mut mass = std::mem::take(&mut self.system_mass);
+        let mut load = std::mem::take(&mut self.system_load);
+        self.full_system(statuses, ag, phi, rates, &mut mass, &mut load);
+        self.system_mass = mass;
+        self.system_load = load;
     }
 
     /// Full `2n × 2n` mass matrix and load vector (with the velocity terms when exact) at a

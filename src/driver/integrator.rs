@@ -10,9 +10,12 @@
 //! RK4 and DOP853 are explicit Runge–Kutta methods on the first-order system `(x, v)' = (v, a)`,
 //! one loop over a Butcher [`Tableau`]: stage `i` evaluates `a` at `x0 + h Σ a_ij V_j`,
 //! `v0 + h Σ a_ij A_j` and at the ground acceleration of its own time `t0 + c_i h`.
+//!
+//! The equations come through [`Equations`], so any chain the driver runs (SPEC §9) is integrated
+//! by the same code.
 
+use super::chain::Equations;
 use super::dop853;
-use super::dynamics::Dynamics;
 use super::Integrator;
 use crate::ground::GroundMotion;
 use crate::model::configuration::Status;
@@ -113,7 +116,7 @@ impl Stepper {
     pub fn step(
         &mut self,
         method: Integrator,
-        dynm: &mut Dynamics,
+        dynm: &mut impl Equations,
         open: &[usize],
         statuses: &[Status],
         motion: &dyn GroundMotion,
@@ -165,7 +168,7 @@ impl Stepper {
     fn explicit(
         &mut self,
         tableau: &Tableau,
-        dynm: &mut Dynamics,
+        dynm: &mut impl Equations,
         open: &[usize],
         statuses: &[Status],
         motion: &dyn GroundMotion,
@@ -238,7 +241,7 @@ impl Stepper {
     #[allow(clippy::too_many_arguments)]
     fn collocate(
         &mut self,
-        dynm: &mut Dynamics,
+        dynm: &mut impl Equations,
         open: &[usize],
         statuses: &[Status],
         ag: f64,
@@ -250,15 +253,19 @@ impl Stepper {
     ) -> bool {
         let k = open.len();
         let c_old = if c_new == 0.25 { 0.25 } else { 2.0 / 6.0 };
-        if k == 1 {
-            // One open DOF (every single block, and most of the time of a column): the same
-            // iteration on scalars, with the rigid-rotation acceleration of `Dynamics::accel`.
-            let rigid = dynm.rigid[open[0]];
+        let rigid = if k == 1 {
+            dynm.rigid_rotation(open[0])
+        } else {
+            None
+        };
+        if let Some((rigid, g)) = rigid {
+            // One open DOF turning a rigid part (every single block, and most of the time of a
+            // column): the same iteration on scalars, with the rigid rotation's acceleration.
             let (x0, v0, a0) = (x0[0], v0[0], a0[0]);
             let mut at = a0;
             for it in 0..MAX_ITERATIONS {
                 let xs = x0 + tau * v0 + tau * tau * (c_old * a0 + c_new * at);
-                let an = rigid.accel(xs, ag, dynm.g);
+                let an = rigid.accel(xs, ag, g);
                 let diff = 0.0_f64.max((an - at).abs());
                 let scale = 0.0_f64.max(an.abs());
                 at = an;

@@ -3,7 +3,7 @@
 use super::dynamics::Dynamics;
 use super::*;
 use crate::ground::{FnMotion, NoMotion};
-use crate::model::column::Block;
+use crate::model::column::{Block, GRAVITY};
 use crate::model::configuration::Status;
 use crate::model::opening::check_configuration;
 
@@ -16,8 +16,13 @@ fn block(b: f64, h: f64) -> Column {
 
 fn free(angle: f64, duration: f64) -> SimulationOptions {
     SimulationOptions {
-        duration,
-        initial_angles: Some(vec![angle]),
+        stopping: StoppingOptions {
+            duration,
+            ..StoppingOptions::default()
+        },
+        initial: InitialState {
+            angles: Some(vec![angle]),
+        },
         ..SimulationOptions::default()
     }
 }
@@ -49,8 +54,8 @@ fn single_block_free_rocking_matches_the_exact_solution() {
     for (n_imp, mu) in [(1, housner(b, h)), (2, two_impacts(b, h))] {
         for locator in [EventLocator::Linear, EventLocator::Hermite] {
             let mut opts = free(-theta0, 6.0);
-            opts.locator = locator;
-            opts.model.n_impacts = n_imp;
+            opts.stepping.locator = locator;
+            opts.physics.model.n_impacts = n_imp;
             let out = simulate(&block(b, h), &NoMotion, &opts, None).unwrap();
             let imps = impacts(&out);
             let expected = exact.impact_times(theta0, mu, 6);
@@ -123,14 +128,14 @@ fn event_cap_stops_a_zeno_sequence() {
     let (b, h) = (0.25, 1.0);
     let exact = SingleBlockExact::new(b, h, G);
     let mut opts = free(-0.6 * exact.delta, 20.0);
-    opts.settle_energy_fraction = 0.0;
-    opts.settle_interval = Some(0.0);
+    opts.stopping.settle_energy_fraction = 0.0;
+    opts.stopping.settle_interval = Some(0.0);
     let out = simulate(&block(b, h), &NoMotion, &opts, None).unwrap();
     eprintln!(
         "without settling: {} impacts, stop {:?} at {}",
         out.impacts, out.stop_reason, out.t_end
     );
-    opts.max_events_per_second = 1.0;
+    opts.stopping.max_events_per_second = 1.0;
     let out = simulate(&block(b, h), &NoMotion, &opts, None).unwrap();
     assert_eq!(out.stop_reason, StopReason::TooManyEvents);
     assert!(out.t_end < 20.0);
@@ -150,7 +155,10 @@ fn determinism_bitwise() {
         2.0,
     );
     let opts = SimulationOptions {
-        duration: 6.0,
+        stopping: StoppingOptions {
+            duration: 6.0,
+            ..StoppingOptions::default()
+        },
         ..SimulationOptions::default()
     };
     let a = simulate(&col, &motion, &opts, None).unwrap();
@@ -282,24 +290,27 @@ fn invalid_options_name_the_field() {
         let e = simulate(&col, &NoMotion, &o, None).unwrap_err();
         assert!(e.to_string().contains(field), "{e}");
     };
-    bad(&|o| o.dt = 0.0, "dt");
-    bad(&|o| o.dt = f64::NAN, "dt");
-    bad(&|o| o.duration = -1.0, "duration");
-    bad(&|o| o.friction = 0.0, "friction");
+    bad(&|o| o.stepping.dt = 0.0, "stepping.dt");
+    bad(&|o| o.stepping.dt = f64::NAN, "stepping.dt");
+    bad(&|o| o.stopping.duration = -1.0, "stopping.duration");
+    bad(&|o| o.physics.friction = 0.0, "physics.friction");
     bad(
-        &|o| o.initial_angles = Some(vec![0.1, 0.2]),
-        "initial_angles",
+        &|o| o.initial.angles = Some(vec![0.1, 0.2]),
+        "initial.angles",
     );
     bad(
-        &|o| o.initial_angles = Some(vec![f64::NAN]),
-        "initial_angles",
+        &|o| o.initial.angles = Some(vec![f64::NAN]),
+        "initial.angles",
     );
     bad(
-        &|o| o.integrator = Integrator::WilsonTheta { theta: 0.5 },
-        "theta",
+        &|o| o.stepping.integrator = Integrator::WilsonTheta { theta: 0.5 },
+        "stepping.integrator.theta",
     );
-    bad(&|o| o.record.history_every = Some(0), "history_every");
-    bad(&|o| o.model.n_impacts = 0, "n_impacts");
+    bad(
+        &|o| o.recording.history_every = Some(0),
+        "recording.history_every",
+    );
+    bad(&|o| o.physics.model.n_impacts = 0, "n_impacts");
 }
 
 /// Thesis 4.2: two granite blocks 0.1 × 0.3 m (0.2 m thick, 2700 kg/m³: 16.2 kg), contact width
@@ -317,12 +328,20 @@ fn thesis_4_2_two_block_free_rocking() {
         // Tilted clockwise (about the right corner) so that the directions read as in the
         // thesis: the lower block opens clockwise, both turn counter-clockwise after the impacts.
         let mut opts = SimulationOptions {
-            duration: 6.0,
-            locator,
-            initial_angles: Some(vec![0.0, -0.153]),
+            stopping: StoppingOptions {
+                duration: 6.0,
+                ..StoppingOptions::default()
+            },
+            stepping: SteppingOptions {
+                locator,
+                ..SteppingOptions::default()
+            },
+            initial: InitialState {
+                angles: Some(vec![0.0, -0.153]),
+            },
             ..SimulationOptions::default()
         };
-        opts.model.n_impacts = 2;
+        opts.physics.model.n_impacts = 2;
         let out = simulate(&col, &NoMotion, &opts, None).unwrap();
         for e in out.events.iter().take(4) {
             eprintln!(
@@ -410,11 +429,14 @@ fn thesis_4_3_three_block_sine_pulse() {
     ];
     for (name, motion) in motions {
         let mut opts = SimulationOptions {
-            duration: 3.0,
-            continue_until_fallen: true,
+            stopping: StoppingOptions {
+                duration: 3.0,
+                continue_until_fallen: true,
+                ..StoppingOptions::default()
+            },
             ..SimulationOptions::default()
         };
-        opts.model.n_impacts = 2;
+        opts.physics.model.n_impacts = 2;
         let out = simulate(&col, motion, &opts, None).unwrap();
         for e in out
             .events
@@ -475,8 +497,14 @@ fn thesis_fig40_monolith_is_more_vulnerable() {
             grid.push_str(&format!("{ap:4.1} "));
             for &tp in &tps {
                 let opts = SimulationOptions {
-                    duration: tp + 10.0,
-                    friction: f64::INFINITY,
+                    stopping: StoppingOptions {
+                        duration: tp + 10.0,
+                        ..StoppingOptions::default()
+                    },
+                    physics: PhysicsOptions {
+                        friction: f64::INFINITY,
+                        ..PhysicsOptions::default()
+                    },
                     ..SimulationOptions::default()
                 };
                 let unsafe_ = overturns(&col, &full_sine(ap, tp), &opts).unwrap();
@@ -518,10 +546,19 @@ fn energy_balance() {
         let motion = full_sine(2.0 * amin, 0.6);
         for locator in [EventLocator::Linear, EventLocator::Hermite] {
             let opts = SimulationOptions {
-                duration: 8.0,
-                exact_velocity_terms: exact,
-                locator,
-                friction: f64::INFINITY,
+                stopping: StoppingOptions {
+                    duration: 8.0,
+                    ..StoppingOptions::default()
+                },
+                physics: PhysicsOptions {
+                    exact_velocity_terms: exact,
+                    friction: f64::INFINITY,
+                    ..PhysicsOptions::default()
+                },
+                stepping: SteppingOptions {
+                    locator,
+                    ..SteppingOptions::default()
+                },
                 ..SimulationOptions::default()
             };
             let out = simulate(&col, &motion, &opts, None).unwrap();
@@ -570,9 +607,9 @@ fn integrator_convergence_order() {
         let mut errors = Vec::new();
         for dt in [0.04, 0.02, 0.01, 0.005] {
             let mut opts = free(-theta0, 1.0);
-            opts.dt = dt;
-            opts.integrator = method;
-            opts.locator = locator;
+            opts.stepping.dt = dt;
+            opts.stepping.integrator = method;
+            opts.stepping.locator = locator;
             let out = simulate(&block(b, h), &NoMotion, &opts, None).unwrap();
             errors.push((impacts(&out)[0].t - t_exact).abs());
         }
@@ -599,11 +636,11 @@ fn dop853_converges_at_high_order_on_free_rocking() {
     let expected = exact.impact_times(theta0, housner(b, h), 5);
     let worst = |method: Integrator, dt: f64| -> f64 {
         let mut opts = free(-theta0, 3.6);
-        opts.dt = dt;
-        opts.integrator = method;
-        opts.locator = EventLocator::Hermite;
+        opts.stepping.dt = dt;
+        opts.stepping.integrator = method;
+        opts.stepping.locator = EventLocator::Hermite;
         // Not four steps (the default): at these steps that would settle the block.
-        opts.settle_interval = Some(0.05);
+        opts.stopping.settle_interval = Some(0.05);
         let out = simulate(&block(b, h), &NoMotion, &opts, None).unwrap();
         let imps = impacts(&out);
         assert!(
@@ -687,16 +724,27 @@ fn dop853_event_sequences_agree_with_rk4() {
     for (name, col, motion, duration, initial_angles) in cases {
         let run = |integrator, dt| {
             let mut opts = SimulationOptions {
-                duration,
-                dt,
-                integrator,
-                locator: EventLocator::Hermite,
-                friction: f64::INFINITY,
-                initial_angles: initial_angles.clone(),
-                settle_interval: Some(1e-3),
+                stopping: StoppingOptions {
+                    duration,
+                    settle_interval: Some(1e-3),
+                    ..StoppingOptions::default()
+                },
+                stepping: SteppingOptions {
+                    dt,
+                    integrator,
+                    locator: EventLocator::Hermite,
+                    ..SteppingOptions::default()
+                },
+                physics: PhysicsOptions {
+                    friction: f64::INFINITY,
+                    ..PhysicsOptions::default()
+                },
+                initial: InitialState {
+                    angles: initial_angles.clone(),
+                },
                 ..SimulationOptions::default()
             };
-            opts.model.n_impacts = 2;
+            opts.physics.model.n_impacts = 2;
             simulate(col, motion, &opts, None).unwrap()
         };
         let reference = run(Integrator::Rk4, 1e-4);
@@ -759,10 +807,19 @@ fn energy_grows_no_faster_than_the_bound_of_stop_when_safe() {
     let col = block(b, h);
     let motion = BundledRecord::new(1.5 * G * b / h);
     let opts = SimulationOptions {
-        duration: 20.0,
-        dt: 2e-4,
-        integrator: Integrator::Rk4,
-        friction: f64::INFINITY,
+        stopping: StoppingOptions {
+            duration: 20.0,
+            ..StoppingOptions::default()
+        },
+        stepping: SteppingOptions {
+            dt: 2e-4,
+            integrator: Integrator::Rk4,
+            ..SteppingOptions::default()
+        },
+        physics: PhysicsOptions {
+            friction: f64::INFINITY,
+            ..PhysicsOptions::default()
+        },
         ..SimulationOptions::default()
     };
     let out = simulate(&col, &motion, &opts, None).unwrap();
@@ -798,7 +855,10 @@ fn energy_grows_no_faster_than_the_bound_of_stop_when_safe() {
         &col,
         &motion,
         &SimulationOptions {
-            stop_when_safe: true,
+            stopping: StoppingOptions {
+                stop_when_safe: true,
+                ..opts.stopping
+            },
             ..opts.clone()
         },
         None,
@@ -809,7 +869,10 @@ fn energy_grows_no_faster_than_the_bound_of_stop_when_safe() {
     // A block that the record tips is never stopped by the bound.
     let tipped = |stop_when_safe| {
         let o = SimulationOptions {
-            stop_when_safe,
+            stopping: StoppingOptions {
+                stop_when_safe,
+                ..opts.stopping
+            },
             ..opts.clone()
         };
         simulate(

@@ -23,7 +23,10 @@
 
 use std::fmt;
 
-use crate::driver::{overturns, DriverError, Recording, SimulationOptions};
+use crate::driver::{
+    overturns_with, DriverError, PhysicsOptions, Recording, RunOptions, SimulationOptions,
+    StoppingOptions,
+};
 use crate::ground::excitation::{ExcitationError, Pulse};
 use crate::ground::records::Record;
 use crate::ground::GroundMotion;
@@ -270,14 +273,20 @@ pub struct SweepOptions {
 impl Default for SweepOptions {
     /// Driver defaults (Wilson θ = 1.4, linear event location, Housner impacts, static tipping),
     /// except friction: infinite (the thesis does not check sliding), and
-    /// [`SimulationOptions::stop_when_safe`]: a single block that the rest of a record provably
+    /// [`StoppingOptions::stop_when_safe`]: a single block that the rest of a record provably
     /// cannot tip stops early (same verdicts: `oas_energy_bound_changes_nothing` in the tests).
     fn default() -> SweepOptions {
         SweepOptions {
             simulation: SimulationOptions {
-                friction: f64::INFINITY,
-                record: Recording::NONE,
-                stop_when_safe: true,
+                physics: PhysicsOptions {
+                    friction: f64::INFINITY,
+                    ..PhysicsOptions::default()
+                },
+                stopping: StoppingOptions {
+                    stop_when_safe: true,
+                    ..StoppingOptions::default()
+                },
+                recording: Recording::NONE,
                 ..SimulationOptions::default()
             },
             time_step: TimeStep::default(),
@@ -299,13 +308,8 @@ impl SweepOptions {
         Ok(())
     }
 
-    fn simulation(&self, dt: f64, duration: f64) -> SimulationOptions {
-        SimulationOptions {
-            dt,
-            duration,
-            record: Recording::NONE,
-            ..self.simulation.clone()
-        }
+    fn simulation(&self, dt: f64, duration: f64) -> RunOptions<'_> {
+        self.simulation.sweep_run(dt, duration)
     }
 }
 
@@ -439,7 +443,7 @@ pub fn pulse_overturns(
     options: &SweepOptions,
 ) -> Result<bool, SpectraError> {
     options.validate()?;
-    let g = options.simulation.gravity;
+    let g = options.simulation.physics.gravity;
     let mono = Monolith::of(column, g);
     let pulse = shape.pulse(a_p, t_p)?;
     // Never lifts off: no simulation needed (the peak of every shape is |a_p|).
@@ -448,10 +452,10 @@ pub fn pulse_overturns(
     }
     let dt = options.time_step.dt(None, Some(t_p), mono.p);
     let sim = options.simulation(dt, pulse.end_time() + options.tail / mono.p);
-    Ok(overturns(
+    Ok(overturns_with(
         column,
         &crate::ground::excitation::Excitation::Pulse(pulse),
-        &sim,
+        sim,
     )?)
 }
 
@@ -562,7 +566,7 @@ pub fn overturning_curve(
     }
     Ok(Oc {
         shape,
-        monolith: Monolith::of(column, options.simulation.gravity),
+        monolith: Monolith::of(column, options.simulation.physics.gravity),
         n_blocks: column.n_interfaces(),
         t_p: t_p.to_vec(),
         a_p: a_p.to_vec(),
@@ -705,7 +709,7 @@ impl<'a> PreparedRecord<'a> {
     fn overturns(&self, level: f64, size: f64, options: &OasOptions) -> Result<bool, SpectraError> {
         let record = self.record;
         let column = column_of_size(size, options.slenderness, options.n_blocks)?;
-        let g = options.sweep.simulation.gravity;
+        let g = options.sweep.simulation.physics.gravity;
         let mono = Monolith::of(&column, g);
         let factor = level * mono.a_p_min / self.pga;
         let Some((t0, t_last)) = exceedance_window(record, factor, uplift_acceleration(&column, g))
@@ -728,8 +732,8 @@ impl<'a> PreparedRecord<'a> {
         let mut sim = options.sweep.simulation(dt, end + tail);
         // After the last exceedance a closed column can never lift off again: stop there
         // (exact).
-        sim.quiet_after = Some(t_last - t0);
-        Ok(overturns(&column, &motion, &sim)?)
+        sim.stopping.quiet_after = Some(t_last - t0);
+        Ok(overturns_with(&column, &motion, sim)?)
     }
 }
 
@@ -1055,11 +1059,11 @@ pub fn oas(
         record: record.name.clone(),
         slenderness: options.slenderness,
         n_blocks: options.n_blocks,
-        n_impacts: options.sweep.simulation.model.n_impacts,
+        n_impacts: options.sweep.simulation.physics.model.n_impacts,
         search: options.search,
         sizes: options.sizes.clone(),
         levels: levels.into_iter().collect::<Result<_, _>>()?,
-        gravity: options.sweep.simulation.gravity,
+        gravity: options.sweep.simulation.physics.gravity,
     })
 }
 

@@ -1,0 +1,209 @@
+//! What the driver asks of a chain of rigid bodies (SPEC §1, §9): its equations of motion, the
+//! checks at a state, its energies, and the two models. The stepper and every event transition
+//! go through these traits, never through column code, so that a second kind of chain (a closed
+//! loop: an arch or a capped colonnade, whose models carry the closure `G v = 0` and whose
+//! opening has no reaction test) implements them without touching the integrators or the
+//! transitions. The column's implementation is [`Dynamics`] with the crate's models.
+
+pub(crate) use super::dynamics::{Check, Dynamics, Rigid};
+use super::events::settle::lock_dof;
+use super::DriverError;
+use crate::error::{ErrorKind, RockingError};
+use crate::model::cone::{ModelOptions, ModelReport};
+use crate::model::configuration::Status;
+use crate::model::impact::kinetic_energy;
+use crate::{impact_model, opening_model};
+
+/// The equations of motion of the open DOFs, as the integrators need them.
+pub(crate) trait Equations {
+    /// Accelerations of the open DOFs `open` (reduced vectors `x`, `v`, output `out`, all of
+    /// length `open.len()`) under the ground acceleration `ag`. Returns `false` if the mass
+    /// matrix is not positive definite.
+    fn accel(
+        &mut self,
+        open: &[usize],
+        statuses: &[Status],
+        ag: f64,
+        x: &[f64],
+        v: &[f64],
+        out: &mut [f64],
+    ) -> bool;
+
+    /// When DOF `dof`, open alone, turns a rigid part about a pivot fixed to the ground: that
+    /// rotation and gravity, whose scalar law `θ̈(θ, a_g)` the implicit integrators iterate on
+    /// directly. `None`: no such closed form (e.g. a loop).
+    fn rigid_rotation(&self, dof: usize) -> Option<(Rigid, f64)>;
+}
+
+/// A chain: its equations, the checks at a state, energies and the models.
+pub(crate) trait Chain: Equations {
+    /// Number of interfaces (joints) `n`; the DOFs are `2n`.
+    fn n_joints(&self) -> usize;
+    /// The configuration changed (scratch that depends on it is reset).
+    fn reconfigured(&mut self);
+
+    /// The end-of-step checks at a state (full `2n` angles and rates): accelerations, reaction
+    /// margins, contact forces (with `forces`), tipping, power. The accelerations, margins and
+    /// block rotations are then in [`Chain::accelerations`], [`Chain::margins`],
+    /// [`Chain::block_angles`].
+    fn check(
+        &mut self,
+        open: &[usize],
+        statuses: &[Status],
+        ag: f64,
+        phi: &[f64],
+        rates: &[f64],
+        forces: bool,
+    ) -> Check;
+    fn accelerations(&self) -> &[f64];
+    fn margins(&self) -> &[f64];
+    fn block_angles(&self) -> &[f64];
+
+    /// Kinetic and potential energy of a state (potential relative to the straight chain).
+    fn energy(&mut self, open: &[usize], phi: &[f64], rates: &[f64]) -> (f64, f64);
+    /// Power of the ground motion's inertial load at a state.
+    fn power(&mut self, open: &[usize], ag: f64, phi: &[f64], rates: &[f64]) -> f64;
+    /// Smallest potential energy that tips a part of the chain statically.
+    fn tipping_energy(&self) -> f64;
+    /// How fast `√E` can grow per unit ground acceleration when one rigid part rocks
+    /// ([`super::StoppingOptions::stop_when_safe`]).
+    fn energy_growth_bound(&self) -> f64;
+
+    /// Assembles the models' input (mass matrix, loads) at a state; the next four calls use it.
+    fn assemble(&mut self, statuses: &[Status], ag: f64, phi: &[f64], rates: &[f64]);
+    /// Kinetic energy of the DOF rates `rates`.
+    fn kinetic_energy(&self, rates: &[f64]) -> f64;
+    /// The opening model (thesis 3.2.2): `statuses` becomes the chosen configuration.
+    fn opening(
+        &self,
+        statuses: &mut [Status],
+        options: &ModelOptions,
+    ) -> Result<ModelReport, RockingError>;
+    /// The impact model (thesis 3.2.3) as the interfaces `closing` close (a column: one):
+    /// `statuses` and `rates` become the configuration and the rates after.
+    fn impact(
+        &self,
+        statuses: &mut [Status],
+        rates: &mut [f64],
+        closing: &[usize],
+        options: &ModelOptions,
+    ) -> Result<ModelReport, RockingError>;
+    /// Removes the open DOF `dof` by the kinetic-metric projection of `rates` (settling).
+    fn lock(&self, open: &[usize], dof: usize, rates: &mut [f64]);
+}
+
+impl Equations for Dynamics<'_> {
+    #[inline]
+    fn accel(
+        &mut self,
+        open: &[usize],
+        statuses: &[Status],
+        ag: f64,
+        x: &[f64],
+        v: &[f64],
+        out: &mut [f64],
+    ) -> bool {
+        Dynamics::accel(self, open, statuses, ag, x, v, out)
+    }
+
+    #[inline]
+    fn rigid_rotation(&self, dof: usize) -> Option<(Rigid, f64)> {
+        Some((self.rigid[dof], self.g))
+    }
+}
+
+impl Chain for Dynamics<'_> {
+    fn n_joints(&self) -> usize {
+        self.n
+    }
+
+    fn reconfigured(&mut self) {
+        self.reset_scratch();
+    }
+
+    #[inline]
+    fn check(
+        &mut self,
+        open: &[usize],
+        statuses: &[Status],
+        ag: f64,
+        phi: &[f64],
+        rates: &[f64],
+        forces: bool,
+    ) -> Check {
+        Dynamics::check(self, open, statuses, ag, phi, rates, forces)
+    }
+
+    fn accelerations(&self) -> &[f64] {
+        &self.acc_full
+    }
+
+    fn margins(&self) -> &[f64] {
+        &self.margin
+    }
+
+    fn block_angles(&self) -> &[f64] {
+        &self.block_angles
+    }
+
+    fn energy(&mut self, open: &[usize], phi: &[f64], rates: &[f64]) -> (f64, f64) {
+        Dynamics::energy(self, open, phi, rates)
+    }
+
+    fn power(&mut self, open: &[usize], ag: f64, phi: &[f64], rates: &[f64]) -> f64 {
+        Dynamics::power(self, open, ag, phi, rates)
+    }
+
+    fn tipping_energy(&self) -> f64 {
+        Dynamics::tipping_energy(self)
+    }
+
+    fn energy_growth_bound(&self) -> f64 {
+        Dynamics::energy_growth_bound(self)
+    }
+
+    fn assemble(&mut self, statuses: &[Status], ag: f64, phi: &[f64], rates: &[f64]) {
+        Dynamics::assemble(self, statuses, ag, phi, rates);
+    }
+
+    fn kinetic_energy(&self, rates: &[f64]) -> f64 {
+        kinetic_energy(&self.system_mass, rates)
+    }
+
+    fn opening(
+        &self,
+        statuses: &mut [Status],
+        options: &ModelOptions,
+    ) -> Result<ModelReport, RockingError> {
+        let mut acceleration = vec![0.0; self.system_load.len()];
+        opening_model(
+            &self.system_mass,
+            &self.system_load,
+            statuses,
+            &mut acceleration,
+            options,
+        )
+    }
+
+    fn impact(
+        &self,
+        statuses: &mut [Status],
+        rates: &mut [f64],
+        closing: &[usize],
+        options: &ModelOptions,
+    ) -> Result<ModelReport, RockingError> {
+        debug_assert_eq!(closing.len(), 1, "a column closes one interface at a time");
+        impact_model(&self.system_mass, statuses, rates, closing[0], options)
+    }
+
+    fn lock(&self, open: &[usize], dof: usize, rates: &mut [f64]) {
+        lock_dof(&self.system_mass, 2 * self.n, open, dof, rates);
+    }
+}
+
+pub(crate) fn not_positive_definite() -> DriverError {
+    DriverError::Model(RockingError::new(
+        ErrorKind::NotPositiveDefinite,
+        "the mass matrix of the open DOFs is not positive definite",
+    ))
+}
