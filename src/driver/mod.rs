@@ -31,29 +31,30 @@
 //!
 //! # The pipeline
 //!
-//! A run is a [`state`] (time, DOF angles, rates and accelerations, statuses, the open DOFs —
-//! a value) carried forward by a short loop ([`run`]) that reads as the list above:
+//! A run is a state (`state.rs`: time, DOF angles, rates and accelerations, statuses, the open
+//! DOFs — a value) carried forward by a short loop (`run.rs`) that reads as the list above:
 //!
-//! - **options** ([`options`]): by concern — [`PhysicsOptions`], [`SteppingOptions`],
+//! - **options** (`options.rs`): by concern — [`PhysicsOptions`], [`SteppingOptions`],
 //!   [`StoppingOptions`], [`Recording`], [`InitialState`]; a run borrows them as one
-//!   `RunOptions`, so a sweep shares its physics and stops across simulations;
-//! - **chain** ([`chain`]): what the driver asks of the bodies — the equations of motion, the
+//!   `RunOptions`, so that a sweep shares its physics and stops across simulations;
+//! - **chain** (`chain.rs`): what the driver asks of the bodies — the equations of motion, the
 //!   checks at a state (reaction margins, contact forces, tipping), energies and the two models —
-//!   as traits; the column's implementation is [`dynamics`] with the crate's models;
-//! - **step** ([`step`], [`integrator`], [`dop853`]): the next step's length and the state at
+//!   as two traits; the column's implementation is `dynamics.rs` with the crate's models;
+//! - **step** (`step.rs`, `integrator.rs`, `dop853.rs`): the next step's length and the state at
 //!   its end, integrated from its start (Wilson θ, Newmark, or RK4 and DOP853 through one
 //!   Runge–Kutta tableau loop);
-//! - **events** ([`events`]): detection of the first event in the step and its location
-//!   (linear or Hermite, DOP853 refinement), then the transition — opening, impact, settling,
-//!   the force and overturning stops, the at-rest and cannot-tip stops, each in its own module;
-//! - **recorder** ([`recorder`]): what is kept — history samples, events, peaks, the energy
-//!   balance — and the [`Outcome`] ([`outcome`]).
+//! - **events** (`events/`): `detect` finds the first event in the step, `locate` and `refine`
+//!   place it (linear or Hermite, the DOP853 refinement) and move the state there; then the
+//!   transition, each in its own module — `opening`, `impact`, `settle`, the stops of `forces`
+//!   (tension, sliding), `overturn` (tipped, fallen) and `rest` (at rest, cannot tip);
+//! - **recorder** (`recorder.rs`): what is kept — history samples, events, peaks, the energy
+//!   balance — and the [`Outcome`] (`outcome.rs`).
 //!
 //! Room for what comes next: another scheme (an event-capturing, Moreau–Jean time stepping with
-//! sliding and flight) is a variant of [`Scheme`] with its own loop beside [`run`], reporting
+//! sliding and flight) is a variant of [`Scheme`] with its own loop beside `run.rs`, reporting
 //! through the same recorder, [`Outcome`] and [`Event`]; another chain (a closed loop, SPEC §9:
-//! the closure `G v = 0`, several joints closing at once, no reaction test) implements the
-//! `Chain` traits, and neither touches the integrators.
+//! the closure `G v = 0`, several joints closing at once, no reaction test) implements the two
+//! traits of `chain.rs`; neither touches the integrators.
 
 mod chain;
 mod dop853;

@@ -118,9 +118,9 @@ impl ReactionCheck {
 }
 
 /// The eccentricity test as reaction signs (SPEC §3): solves the current configuration and
-/// reports the closed interfaces that must open ([`reaction_margins`], the driver's test).
-/// Consistent with [`opening_model`]: the configuration holds exactly when the opening model
-/// keeps it.
+/// reports the closed interfaces that must open (`reaction_margins`, the test the driver makes
+/// at every step). Consistent with [`opening_model`]: the configuration holds exactly when the
+/// opening model keeps it.
 pub fn check_configuration(
     mass: &[f64],
     load: &[f64],

@@ -251,10 +251,10 @@ impl TimeStep {
 /// Options shared by the OC and OAS sweeps.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SweepOptions {
-    /// Template of every simulation: integrator, event locator, impact model (`model.n_impacts`:
-    /// 1 = Housner, 2 = the thesis's recommended model, 10 ≈ rolling), friction, gravity,
-    /// overturning criterion. `dt` and `duration` are overwritten per simulation and `record`
-    /// by [`Recording::NONE`].
+    /// Template of every simulation: integrator, event locator, impact model
+    /// (`physics.model.n_impacts`: 1 = Housner, 2 = the thesis's recommended model, 10 ≈
+    /// rolling), friction, gravity, overturning criterion. Every simulation shares its physics
+    /// and stops, with its own `stepping.dt` and `stopping.duration`, recording nothing.
     pub simulation: SimulationOptions,
     /// Time step rule.
     pub time_step: TimeStep,
