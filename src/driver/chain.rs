@@ -3,16 +3,13 @@
 //! go through these traits, never through column code, so that a second kind of chain (a closed
 //! loop: an arch or a capped colonnade, whose models carry the closure `G v = 0` and whose
 //! opening has no reaction test) implements them without touching the integrators or the
-//! transitions. The column's implementation is [`Dynamics`] with the crate's models.
+//! transitions. The column's implementation is `Dynamics` (`dynamics.rs`) with the crate's
+//! models.
 
-pub(crate) use super::dynamics::{Check, Dynamics, Rigid};
-use super::events::settle::lock_dof;
 use super::DriverError;
 use crate::error::{ErrorKind, RockingError};
 use crate::model::cone::{ModelOptions, ModelReport};
 use crate::model::configuration::Status;
-use crate::model::impact::kinetic_energy;
-use crate::{impact_model, opening_model};
 
 /// The equations of motion of the open DOFs, as the integrators need them.
 pub(crate) trait Equations {
@@ -92,113 +89,46 @@ pub(crate) trait Chain: Equations {
     fn lock(&self, open: &[usize], dof: usize, rates: &mut [f64]);
 }
 
-impl Equations for Dynamics<'_> {
-    #[inline]
-    fn accel(
-        &mut self,
-        open: &[usize],
-        statuses: &[Status],
-        ag: f64,
-        x: &[f64],
-        v: &[f64],
-        out: &mut [f64],
-    ) -> bool {
-        Dynamics::accel(self, open, statuses, ag, x, v, out)
+/// Rigid rotation of the part above interface `k_a` about the pivot of DOF `a` (straight column).
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Rigid {
+    pub s0: f64,
+    /// `G − P` in the straight column.
+    pub dx: f64,
+    pub dy: f64,
+    /// Inverse of the moment of inertia about the pivot, `1 / M_aa`.
+    pub inv_ip: f64,
+}
+
+impl Rigid {
+    /// `(r_x, r_y)` for the rotation `theta`.
+    #[inline(always)]
+    pub fn arm(&self, theta: f64) -> (f64, f64) {
+        let (s, c) = theta.sin_cos();
+        (c * self.dx - s * self.dy, s * self.dx + c * self.dy)
     }
 
-    #[inline]
-    fn rigid_rotation(&self, dof: usize) -> Option<(Rigid, f64)> {
-        Some((self.rigid[dof], self.g))
+    #[inline(always)]
+    pub fn accel(&self, theta: f64, ag: f64, g: f64) -> f64 {
+        let (rx, ry) = self.arm(theta);
+        self.s0 * (ag * ry - g * rx) * self.inv_ip
     }
 }
 
-impl Chain for Dynamics<'_> {
-    fn n_joints(&self) -> usize {
-        self.n
-    }
-
-    fn reconfigured(&mut self) {
-        self.reset_scratch();
-    }
-
-    #[inline]
-    fn check(
-        &mut self,
-        open: &[usize],
-        statuses: &[Status],
-        ag: f64,
-        phi: &[f64],
-        rates: &[f64],
-        forces: bool,
-    ) -> Check {
-        Dynamics::check(self, open, statuses, ag, phi, rates, forces)
-    }
-
-    fn accelerations(&self) -> &[f64] {
-        &self.acc_full
-    }
-
-    fn margins(&self) -> &[f64] {
-        &self.margin
-    }
-
-    fn block_angles(&self) -> &[f64] {
-        &self.block_angles
-    }
-
-    fn energy(&mut self, open: &[usize], phi: &[f64], rates: &[f64]) -> (f64, f64) {
-        Dynamics::energy(self, open, phi, rates)
-    }
-
-    fn power(&mut self, open: &[usize], ag: f64, phi: &[f64], rates: &[f64]) -> f64 {
-        Dynamics::power(self, open, ag, phi, rates)
-    }
-
-    fn tipping_energy(&self) -> f64 {
-        Dynamics::tipping_energy(self)
-    }
-
-    fn energy_growth_bound(&self) -> f64 {
-        Dynamics::energy_growth_bound(self)
-    }
-
-    fn assemble(&mut self, statuses: &[Status], ag: f64, phi: &[f64], rates: &[f64]) {
-        Dynamics::assemble(self, statuses, ag, phi, rates);
-    }
-
-    fn kinetic_energy(&self, rates: &[f64]) -> f64 {
-        kinetic_energy(&self.system_mass, rates)
-    }
-
-    fn opening(
-        &self,
-        statuses: &mut [Status],
-        options: &ModelOptions,
-    ) -> Result<ModelReport, RockingError> {
-        let mut acceleration = vec![0.0; self.system_load.len()];
-        opening_model(
-            &self.system_mass,
-            &self.system_load,
-            statuses,
-            &mut acceleration,
-            options,
-        )
-    }
-
-    fn impact(
-        &self,
-        statuses: &mut [Status],
-        rates: &mut [f64],
-        closing: &[usize],
-        options: &ModelOptions,
-    ) -> Result<ModelReport, RockingError> {
-        debug_assert_eq!(closing.len(), 1, "a column closes one interface at a time");
-        impact_model(&self.system_mass, statuses, rates, closing[0], options)
-    }
-
-    fn lock(&self, open: &[usize], dof: usize, rates: &mut [f64]) {
-        lock_dof(&self.system_mass, 2 * self.n, open, dof, rates);
-    }
+/// Results of the checks at a state ([`Chain::check`]; the accelerations, margins and block
+/// rotations are left in the chain).
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Check {
+    /// Largest opening margin over the closed DOFs (`> 0`: the reaction test fails).
+    pub max_margin: f64,
+    pub tension: Option<usize>,
+    pub sliding: Option<usize>,
+    pub tipped: Option<usize>,
+    pub fallen: Option<usize>,
+    /// Power of the ground motion's inertial load, `Σ_f q^{ag}_f φ̇_f`.
+    pub power: f64,
+    /// `false` when the mass matrix of the configuration was not positive definite.
+    pub ok: bool,
 }
 
 pub(crate) fn not_positive_definite() -> DriverError {

@@ -1,4 +1,5 @@
-//! Equations of motion of a configuration and the per-step checks, without allocation.
+//! The column as the driver's chain ([`Equations`], [`Chain`]): equations of motion of a
+//! configuration and the per-step checks, without allocation, and the crate's two models.
 //!
 //! General path: the pose of the whole column ([`Column::pose_into`]), `M_FF` of the open DOFs
 //! ([`Pose::mass_entry`]), `q_F` ([`Pose::load_entry`], plus the exact velocity terms on
@@ -9,52 +10,16 @@
 //!   (the centripetal force passes through the fixed pivot);
 //! - everything closed: the column is straight, `q = a_g Qa − g Qg` with constants.
 
+use super::chain::{Chain, Check, Equations, Rigid};
+use super::events::settle::lock_dof;
+use crate::error::RockingError;
 use crate::model::cholesky;
 use crate::model::column::{Column, Pose};
+use crate::model::cone::{ModelOptions, ModelReport};
 use crate::model::configuration::Status;
+use crate::model::impact::kinetic_energy;
 use crate::model::opening::{reaction_margins, AllClosed, Configuration};
-
-/// Rigid rotation of the part above interface `k_a` about the pivot of DOF `a` (straight column).
-#[derive(Clone, Copy, Debug, Default)]
-pub(crate) struct Rigid {
-    pub s0: f64,
-    /// `G − P` in the straight column.
-    pub dx: f64,
-    pub dy: f64,
-    /// Inverse of the moment of inertia about the pivot, `1 / M_aa`.
-    pub inv_ip: f64,
-}
-
-impl Rigid {
-    /// `(r_x, r_y)` for the rotation `theta`.
-    #[inline(always)]
-    pub fn arm(&self, theta: f64) -> (f64, f64) {
-        let (s, c) = theta.sin_cos();
-        (c * self.dx - s * self.dy, s * self.dx + c * self.dy)
-    }
-
-    #[inline(always)]
-    pub fn accel(&self, theta: f64, ag: f64, g: f64) -> f64 {
-        let (rx, ry) = self.arm(theta);
-        self.s0 * (ag * ry - g * rx) * self.inv_ip
-    }
-}
-
-/// Results of the end-of-step checks (accelerations are left in `Dynamics::acc_full`, the
-/// opening margins in `Dynamics::margin`).
-#[derive(Clone, Copy, Debug, Default)]
-pub(crate) struct Check {
-    /// Largest opening margin over the closed DOFs (`> 0`: the reaction test fails).
-    pub max_margin: f64,
-    pub tension: Option<usize>,
-    pub sliding: Option<usize>,
-    pub tipped: Option<usize>,
-    pub fallen: Option<usize>,
-    /// Power of the ground motion's inertial load, `Σ_f q^{ag}_f φ̇_f`.
-    pub power: f64,
-    /// `false` when the mass matrix of the configuration was not positive definite.
-    pub ok: bool,
-}
+use crate::{impact_model, opening_model};
 
 pub(crate) struct Dynamics<'a> {
     pub col: &'a Column,
@@ -160,61 +125,6 @@ impl<'a> Dynamics<'a> {
         }
     }
 
-    /// Smallest potential energy that tips a part of the column statically (straight column).
-    pub fn tipping_energy(&self) -> f64 {
-        self.rigid
-            .iter()
-            .map(|r| r.s0 * self.g * ((r.dx * r.dx + r.dy * r.dy).sqrt() - r.dy))
-            .fold(f64::INFINITY, f64::min)
-    }
-
-    /// The largest `m R / √(2 I_P)` over the rigid rotations of the straight column: how fast
-    /// `√E` can grow per unit ground acceleration (the bound of
-    /// [`super::StoppingOptions::stop_when_safe`]).
-    pub fn energy_growth_bound(&self) -> f64 {
-        self.rigid
-            .iter()
-            .map(|r| r.s0 * (r.dx * r.dx + r.dy * r.dy).sqrt() * (0.5 * r.inv_ip).sqrt())
-            .fold(0.0, f64::max)
-    }
-
-    /// Accelerations of the open DOFs (reduced vectors `x`, `v`, output `out`, all of length
-    /// `open.len()`). Returns `false` if the mass matrix is not positive definite.
-    #[inline]
-    pub fn accel(
-        &mut self,
-        open: &[usize],
-        statuses: &[Status],
-        ag: f64,
-        x: &[f64],
-        v: &[f64],
-        out: &mut [f64],
-    ) -> bool {
-        match open.len() {
-            0 => true,
-            1 => {
-                out[0] = self.rigid[open[0]].accel(x[0], ag, self.g);
-                true
-            }
-            k => {
-                for i in 0..k {
-                    self.phi[open[i]] = x[i];
-                    self.rates[open[i]] = v[i];
-                }
-                self.col.pose_into(&self.phi, &mut self.pose);
-                let ok = self.solve_open(open, statuses, ag);
-                out[..k].copy_from_slice(&self.rhs[..k]);
-                ok
-            }
-        }
-    }
-
-    /// Sets the scratch vectors to zero (call when the configuration changes).
-    pub fn reset_scratch(&mut self) {
-        self.phi.iter_mut().for_each(|v| *v = 0.0);
-        self.rates.iter_mut().for_each(|v| *v = 0.0);
-    }
-
     /// Velocity terms of the exact equations into `vload` (uses `pose`, `rates`).
     fn velocity_load(&mut self, statuses: &[Status]) {
         let n = self.n;
@@ -270,82 +180,6 @@ impl<'a> Dynamics<'a> {
         }
         cholesky::solve(mk, k, &mut self.rhs[..k]);
         true
-    }
-
-    /// The end-of-step checks at the state `phi`, `rates` (full `2n`) and ground acceleration
-    /// `ag`. Writes `acc_full`, `margin`, `block_angles`. `forces`: also tension and sliding.
-    pub fn check(
-        &mut self,
-        open: &[usize],
-        statuses: &[Status],
-        ag: f64,
-        phi: &[f64],
-        rates: &[f64],
-        forces: bool,
-    ) -> Check {
-        let n = self.n;
-        let g = self.g;
-        let mut out = Check {
-            max_margin: f64::NEG_INFINITY,
-            ok: true,
-            ..Check::default()
-        };
-        match open.len() {
-            0 => {
-                // Straight column moving with the ground: constant `M`, `q = a_g Qa − g Qg`.
-                for d in 0..2 * n {
-                    self.q[d] = ag * self.straight_qa[d] - g * self.straight_qg[d];
-                    self.acc_full[d] = 0.0;
-                }
-                out.max_margin = reaction_margins(
-                    &AllClosed(n),
-                    &[],
-                    &self.q,
-                    &self.straight_isq,
-                    &self.acc_full,
-                    |_, _| 0.0,
-                    self.tol,
-                    &mut self.margin,
-                );
-                self.block_angles.iter_mut().for_each(|v| *v = 0.0);
-                // N = S0 g, V = S0 a_g on every interface: the lowest decides.
-                if forces && ag.abs() > self.friction * g {
-                    out.sliding = Some(0);
-                }
-                out
-            }
-            1 if n == 1 => {
-                let d = open[0];
-                let r = self.rigid[d];
-                let theta = phi[d];
-                let omega = rates[d];
-                let (rx, ry) = r.arm(theta);
-                let eps = r.s0 * (ag * ry - g * rx) * r.inv_ip;
-                self.acc_full[d] = eps;
-                self.margin[0] = f64::NEG_INFINITY;
-                self.margin[1] = f64::NEG_INFINITY;
-                self.block_angles[0] = theta;
-                out.power = ag * r.s0 * ry * omega;
-                let sigma = statuses[0].sign();
-                if -sigma * rx > 0.0 {
-                    out.tipped = Some(0);
-                }
-                if theta.abs() >= 0.5 * std::f64::consts::PI {
-                    out.fallen = Some(0);
-                }
-                if forces {
-                    // c̈ = ε ẑ × r − ω² r; F = S0 (c̈ + (a_g, g)).
-                    let fx = r.s0 * (-eps * ry - omega * omega * rx + ag);
-                    let fy = r.s0 * (eps * rx - omega * omega * ry + g);
-                    self.classify_force(0, fx, fy, &mut out);
-                }
-                out
-            }
-            _ => {
-                self.general_check(open, statuses, ag, phi, rates, forces, &mut out);
-                out
-            }
-        }
     }
 
     /// Tension and friction tests on interface `k` with shear `v` and normal force `nn`.
@@ -479,41 +313,6 @@ impl<'a> Dynamics<'a> {
         }
     }
 
-    /// Kinetic and potential energy of a state (relative to the straight column).
-    pub fn energy(&mut self, open: &[usize], phi: &[f64], rates: &[f64]) -> (f64, f64) {
-        self.col.pose_into(phi, &mut self.pose);
-        let mut t = 0.0;
-        for &a in open {
-            for &b in open {
-                t += rates[a] * self.pose.mass_entry(a, b) * rates[b];
-            }
-        }
-        let v: f64 = (0..self.n)
-            .map(|j| self.masses[j] * self.g * (self.pose.centres[j][1] - self.centre_y0[j]))
-            .sum();
-        (0.5 * t, v)
-    }
-
-    /// Power of the ground motion's inertial load at a state (general path).
-    pub fn power(&mut self, open: &[usize], ag: f64, phi: &[f64], rates: &[f64]) -> f64 {
-        if open.is_empty() || ag == 0.0 {
-            return 0.0;
-        }
-        self.col.pose_into(phi, &mut self.pose);
-        open.iter()
-            .map(|&f| self.pose.load_entry(f, ag, 0.0) * rates[f])
-            .sum()
-    }
-
-    /// [`Dynamics::full_system`] into `system_mass`, `system_load`.
-    pub fn assemble(&mut self, statuses: &[Status], ag: f64, phi: &[f64], rates: &[f64]) {
-        let mut mass = std::mem::take(&mut self.system_mass);
-        let mut load = std::mem::take(&mut self.system_load);
-        self.full_system(statuses, ag, phi, rates, &mut mass, &mut load);
-        self.system_mass = mass;
-        self.system_load = load;
-    }
-
     /// Full `2n × 2n` mass matrix and load vector (with the velocity terms when exact) at a
     /// state, for the models.
     pub fn full_system(
@@ -535,6 +334,224 @@ impl<'a> Dynamics<'a> {
                 *l += v;
             }
         }
+    }
+}
+
+impl Equations for Dynamics<'_> {
+    #[inline]
+    fn accel(
+        &mut self,
+        open: &[usize],
+        statuses: &[Status],
+        ag: f64,
+        x: &[f64],
+        v: &[f64],
+        out: &mut [f64],
+    ) -> bool {
+        match open.len() {
+            0 => true,
+            1 => {
+                out[0] = self.rigid[open[0]].accel(x[0], ag, self.g);
+                true
+            }
+            k => {
+                for i in 0..k {
+                    self.phi[open[i]] = x[i];
+                    self.rates[open[i]] = v[i];
+                }
+                self.col.pose_into(&self.phi, &mut self.pose);
+                let ok = self.solve_open(open, statuses, ag);
+                out[..k].copy_from_slice(&self.rhs[..k]);
+                ok
+            }
+        }
+    }
+
+    /// Every single open DOF of a column turns the part above about a pivot fixed to the ground.
+    #[inline]
+    fn rigid_rotation(&self, dof: usize) -> Option<(Rigid, f64)> {
+        Some((self.rigid[dof], self.g))
+    }
+}
+
+impl Chain for Dynamics<'_> {
+    fn n_joints(&self) -> usize {
+        self.n
+    }
+
+    /// Sets the scratch vectors to zero.
+    fn reconfigured(&mut self) {
+        self.phi.iter_mut().for_each(|v| *v = 0.0);
+        self.rates.iter_mut().for_each(|v| *v = 0.0);
+    }
+
+    #[inline]
+    fn check(
+        &mut self,
+        open: &[usize],
+        statuses: &[Status],
+        ag: f64,
+        phi: &[f64],
+        rates: &[f64],
+        forces: bool,
+    ) -> Check {
+        let n = self.n;
+        let g = self.g;
+        let mut out = Check {
+            max_margin: f64::NEG_INFINITY,
+            ok: true,
+            ..Check::default()
+        };
+        match open.len() {
+            0 => {
+                // Straight column moving with the ground: constant `M`, `q = a_g Qa − g Qg`.
+                for d in 0..2 * n {
+                    self.q[d] = ag * self.straight_qa[d] - g * self.straight_qg[d];
+                    self.acc_full[d] = 0.0;
+                }
+                out.max_margin = reaction_margins(
+                    &AllClosed(n),
+                    &[],
+                    &self.q,
+                    &self.straight_isq,
+                    &self.acc_full,
+                    |_, _| 0.0,
+                    self.tol,
+                    &mut self.margin,
+                );
+                self.block_angles.iter_mut().for_each(|v| *v = 0.0);
+                // N = S0 g, V = S0 a_g on every interface: the lowest decides.
+                if forces && ag.abs() > self.friction * g {
+                    out.sliding = Some(0);
+                }
+                out
+            }
+            1 if n == 1 => {
+                let d = open[0];
+                let r = self.rigid[d];
+                let theta = phi[d];
+                let omega = rates[d];
+                let (rx, ry) = r.arm(theta);
+                let eps = r.s0 * (ag * ry - g * rx) * r.inv_ip;
+                self.acc_full[d] = eps;
+                self.margin[0] = f64::NEG_INFINITY;
+                self.margin[1] = f64::NEG_INFINITY;
+                self.block_angles[0] = theta;
+                out.power = ag * r.s0 * ry * omega;
+                let sigma = statuses[0].sign();
+                if -sigma * rx > 0.0 {
+                    out.tipped = Some(0);
+                }
+                if theta.abs() >= 0.5 * std::f64::consts::PI {
+                    out.fallen = Some(0);
+                }
+                if forces {
+                    // c̈ = ε ẑ × r − ω² r; F = S0 (c̈ + (a_g, g)).
+                    let fx = r.s0 * (-eps * ry - omega * omega * rx + ag);
+                    let fy = r.s0 * (eps * rx - omega * omega * ry + g);
+                    self.classify_force(0, fx, fy, &mut out);
+                }
+                out
+            }
+            _ => {
+                self.general_check(open, statuses, ag, phi, rates, forces, &mut out);
+                out
+            }
+        }
+    }
+
+    fn accelerations(&self) -> &[f64] {
+        &self.acc_full
+    }
+
+    fn margins(&self) -> &[f64] {
+        &self.margin
+    }
+
+    fn block_angles(&self) -> &[f64] {
+        &self.block_angles
+    }
+
+    fn energy(&mut self, open: &[usize], phi: &[f64], rates: &[f64]) -> (f64, f64) {
+        self.col.pose_into(phi, &mut self.pose);
+        let mut t = 0.0;
+        for &a in open {
+            for &b in open {
+                t += rates[a] * self.pose.mass_entry(a, b) * rates[b];
+            }
+        }
+        let v: f64 = (0..self.n)
+            .map(|j| self.masses[j] * self.g * (self.pose.centres[j][1] - self.centre_y0[j]))
+            .sum();
+        (0.5 * t, v)
+    }
+
+    fn power(&mut self, open: &[usize], ag: f64, phi: &[f64], rates: &[f64]) -> f64 {
+        if open.is_empty() || ag == 0.0 {
+            return 0.0;
+        }
+        self.col.pose_into(phi, &mut self.pose);
+        open.iter()
+            .map(|&f| self.pose.load_entry(f, ag, 0.0) * rates[f])
+            .sum()
+    }
+
+    /// Over the rigid rotations of the straight column.
+    fn tipping_energy(&self) -> f64 {
+        self.rigid
+            .iter()
+            .map(|r| r.s0 * self.g * ((r.dx * r.dx + r.dy * r.dy).sqrt() - r.dy))
+            .fold(f64::INFINITY, f64::min)
+    }
+
+    /// The largest `m R / √(2 I_P)` over the rigid rotations of the straight column.
+    fn energy_growth_bound(&self) -> f64 {
+        self.rigid
+            .iter()
+            .map(|r| r.s0 * (r.dx * r.dx + r.dy * r.dy).sqrt() * (0.5 * r.inv_ip).sqrt())
+            .fold(0.0, f64::max)
+    }
+
+    fn assemble(&mut self, statuses: &[Status], ag: f64, phi: &[f64], rates: &[f64]) {
+        let mut mass = std::mem::take(&mut self.system_mass);
+        let mut load = std::mem::take(&mut self.system_load);
+        self.full_system(statuses, ag, phi, rates, &mut mass, &mut load);
+        self.system_mass = mass;
+        self.system_load = load;
+    }
+
+    fn kinetic_energy(&self, rates: &[f64]) -> f64 {
+        kinetic_energy(&self.system_mass, rates)
+    }
+
+    fn opening(
+        &self,
+        statuses: &mut [Status],
+        options: &ModelOptions,
+    ) -> Result<ModelReport, RockingError> {
+        let mut acceleration = vec![0.0; self.system_load.len()];
+        opening_model(
+            &self.system_mass,
+            &self.system_load,
+            statuses,
+            &mut acceleration,
+            options,
+        )
+    }
+
+    fn impact(
+        &self,
+        statuses: &mut [Status],
+        rates: &mut [f64],
+        closing: &[usize],
+        options: &ModelOptions,
+    ) -> Result<ModelReport, RockingError> {
+        debug_assert_eq!(closing.len(), 1, "a column closes one interface at a time");
+        impact_model(&self.system_mass, statuses, rates, closing[0], options)
+    }
+
+    fn lock(&self, open: &[usize], dof: usize, rates: &mut [f64]) {
+        lock_dof(&self.system_mass, 2 * self.n, open, dof, rates);
     }
 }
 

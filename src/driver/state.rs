@@ -59,7 +59,7 @@ pub(crate) struct State {
     pub power: f64,
     /// Configuration.
     pub statuses: Vec<Status>,
-    /// The open DOFs of `statuses`, ascending.
+    /// The open DOFs of `statuses`, in interface order ([`open_dofs`]).
     pub open: Vec<usize>,
 }
 

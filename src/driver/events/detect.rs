@@ -106,15 +106,8 @@ fn hermite_opening<C: Chain>(
             probe.phi[d] = hermite(s, h, y0, y1, v0, v1);
             probe.rates[d] = hermite_rate(s, h, y0, y1, v0, v1);
         }
-        chain
-            .check(
-                &state.open,
-                &state.statuses,
-                motion.acceleration(t0 + s * h),
-                &probe.phi,
-                &probe.rates,
-                false,
-            )
+        probe
+            .check(chain, state, motion.acceleration(t0 + s * h))
             .max_margin
     };
     illinois(f, 0.0, g0, 1.0, g1, 1e-13)

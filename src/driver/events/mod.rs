@@ -14,6 +14,9 @@ pub(crate) mod refine;
 pub(crate) mod rest;
 pub(crate) mod settle;
 
+use super::chain::{Chain, Check};
+use super::state::State;
+
 /// An event found inside a step.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum Found {
@@ -35,5 +38,18 @@ impl Probe {
             phi: vec![0.0; 2 * n],
             rates: vec![0.0; 2 * n],
         }
+    }
+
+    /// The checks at the probed state in `state`'s configuration under the ground acceleration
+    /// `ag` (without the contact forces).
+    pub fn check(&self, chain: &mut impl Chain, state: &State, ag: f64) -> Check {
+        chain.check(
+            &state.open,
+            &state.statuses,
+            ag,
+            &self.phi,
+            &self.rates,
+            false,
+        )
     }
 }

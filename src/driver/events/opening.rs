@@ -37,15 +37,7 @@ pub(crate) fn judge<C: Chain>(
         }
         let ag = problem.ag(state.t() + eps);
         let chain = &mut problem.chain;
-        let c = chain.check(
-            &state.open,
-            &state.statuses,
-            ag,
-            &probe.phi,
-            &probe.rates,
-            false,
-        );
-        if c.max_margin <= 0.0 {
+        if probe.check(chain, state, ag).max_margin <= 0.0 {
             continue;
         }
         chain.assemble(&state.statuses, ag, &probe.phi, &probe.rates);

@@ -163,14 +163,7 @@ fn margin_at<C: Chain>(
     step.stepper
         .write_open(&state.open, &mut probe.phi, &mut probe.rates);
     let ag = problem.ag(step.t0 + s * step.h);
-    let c = problem.chain.check(
-        &state.open,
-        &state.statuses,
-        ag,
-        &probe.phi,
-        &probe.rates,
-        false,
-    );
+    let c = probe.check(&mut problem.chain, state, ag);
     if c.ok {
         Ok(c.max_margin)
     } else {

@@ -78,7 +78,7 @@ fn reaction_test_agrees_with_check_configuration() {
             }
             let ag = (rnd() - 0.5) * 12.0;
             let open = crate::model::configuration::open_dofs(&statuses);
-            dynm.reset_scratch();
+            dynm.reconfigured();
             let c = dynm.check(&open, &statuses, ag, &phi, &rates, false);
             let mut mass = vec![0.0; 36];
             let mut load = vec![0.0; 6];

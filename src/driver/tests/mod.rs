@@ -5,6 +5,7 @@ mod integrators;
 mod single_block;
 mod thesis;
 
+use super::chain::{Chain, Equations};
 use super::dynamics::Dynamics;
 use super::reference::SingleBlockExact;
 use super::*;
