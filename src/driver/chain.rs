@@ -3,7 +3,7 @@
 //! go through these traits, never through column code, so that a second kind of chain (a closed
 //! loop: an arch or a capped colonnade, whose models carry the closure `G v = 0` and whose
 //! opening has no reaction test) implements them without touching the integrators or the
-//! transitions. The column's implementation is `Dynamics` (`dynamics.rs`) with the crate's
+//! transitions. The column's implementation is `ColumnDynamics` (`dynamics.rs`) with the crate's
 //! models.
 
 use super::DriverError;
@@ -33,7 +33,7 @@ pub(crate) trait Equations {
 }
 
 /// A chain: its equations, the checks at a state, energies and the models.
-pub(crate) trait Chain: Equations {
+pub(crate) trait ChainDynamics: Equations {
     /// Number of interfaces (joints) `n`; the DOFs are `2n`.
     fn n_joints(&self) -> usize;
     /// The configuration changed (scratch that depends on it is reset).
@@ -41,8 +41,8 @@ pub(crate) trait Chain: Equations {
 
     /// The end-of-step checks at a state (full `2n` angles and rates): accelerations, reaction
     /// margins, contact forces (with `forces`), tipping, power. The accelerations, margins and
-    /// block rotations are then in [`Chain::accelerations`], [`Chain::margins`],
-    /// [`Chain::block_angles`].
+    /// block rotations are then in [`ChainDynamics::accelerations`], [`ChainDynamics::margins`],
+    /// [`ChainDynamics::block_angles`].
     fn check(
         &mut self,
         open: &[usize],
@@ -115,7 +115,7 @@ impl Rigid {
     }
 }
 
-/// Results of the checks at a state ([`Chain::check`]; the accelerations, margins and block
+/// Results of the checks at a state ([`ChainDynamics::check`]; the accelerations, margins and block
 /// rotations are left in the chain).
 #[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct Check {

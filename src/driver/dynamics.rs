@@ -1,4 +1,4 @@
-//! The column as the driver's chain ([`Equations`], [`Chain`]): equations of motion of a
+//! The column as the driver's chain ([`Equations`], [`ChainDynamics`]): equations of motion of a
 //! configuration and the per-step checks, without allocation, and the crate's two models.
 //!
 //! General path: the pose of the whole column ([`Column::pose_into`]), `M_FF` of the open DOFs
@@ -10,7 +10,7 @@
 //!   (the centripetal force passes through the fixed pivot);
 //! - everything closed: the column is straight, `q = a_g Qa − g Qg` with constants.
 
-use super::chain::{Chain, Check, Equations, Rigid};
+use super::chain::{ChainDynamics, Check, Equations, Rigid};
 use super::events::settle::lock_dof;
 use crate::error::RockingError;
 use crate::model::cholesky;
@@ -21,7 +21,7 @@ use crate::model::impact::kinetic_energy;
 use crate::model::opening::{reaction_margins, AllClosed, Configuration};
 use crate::{impact_model, opening_model};
 
-pub(crate) struct Dynamics<'a> {
+pub(crate) struct ColumnDynamics<'a> {
     pub col: &'a Column,
     pub n: usize,
     pub g: f64,
@@ -52,20 +52,20 @@ pub(crate) struct Dynamics<'a> {
     pub margin: Vec<f64>,
     /// Block rotations of the last check.
     pub block_angles: Vec<f64>,
-    /// The full `2n × 2n` mass matrix and load vector of the last [`Dynamics::assemble`], the
+    /// The full `2n × 2n` mass matrix and load vector of the last [`ColumnDynamics::assemble`], the
     /// models' input.
     pub system_mass: Vec<f64>,
     pub system_load: Vec<f64>,
 }
 
-impl<'a> Dynamics<'a> {
+impl<'a> ColumnDynamics<'a> {
     pub fn new(
         col: &'a Column,
         gravity: f64,
         exact: bool,
         tol: f64,
         friction: f64,
-    ) -> Dynamics<'a> {
+    ) -> ColumnDynamics<'a> {
         let n = col.n_interfaces();
         let m = 2 * n;
         let pose = col.pose(&vec![0.0; m]);
@@ -93,7 +93,7 @@ impl<'a> Dynamics<'a> {
             isq.push(1.0 / ip.sqrt());
         }
         let centre_y0 = pose.centres.iter().map(|c| c[1]).collect();
-        Dynamics {
+        ColumnDynamics {
             col,
             n,
             g: gravity,
@@ -337,7 +337,7 @@ impl<'a> Dynamics<'a> {
     }
 }
 
-impl Equations for Dynamics<'_> {
+impl Equations for ColumnDynamics<'_> {
     #[inline]
     fn accel(
         &mut self,
@@ -374,7 +374,7 @@ impl Equations for Dynamics<'_> {
     }
 }
 
-impl Chain for Dynamics<'_> {
+impl ChainDynamics for ColumnDynamics<'_> {
     fn n_joints(&self) -> usize {
         self.n
     }

@@ -128,7 +128,7 @@ fn simulate_with(
     match options.stepping.scheme {
         Scheme::EventDriven => {
             let physics = options.physics;
-            let chain = dynamics::Dynamics::new(
+            let chain = dynamics::ColumnDynamics::new(
                 column,
                 physics.gravity,
                 physics.exact_velocity_terms,

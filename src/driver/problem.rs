@@ -1,10 +1,10 @@
 //! What a run simulates: a chain under a ground motion, with its options.
 
-use super::chain::Chain;
+use super::chain::ChainDynamics;
 use super::options::RunOptions;
 use crate::ground::GroundMotion;
 
-pub(crate) struct Problem<'a, C: Chain> {
+pub(crate) struct Problem<'a, C: ChainDynamics> {
     /// The chain: its equations, checks and models.
     pub chain: C,
     pub motion: &'a dyn GroundMotion,
@@ -13,7 +13,7 @@ pub(crate) struct Problem<'a, C: Chain> {
     pub opts: RunOptions<'a>,
 }
 
-impl<'a, C: Chain> Problem<'a, C> {
+impl<'a, C: ChainDynamics> Problem<'a, C> {
     pub fn new(chain: C, motion: &'a dyn GroundMotion, opts: RunOptions<'a>) -> Self {
         Problem {
             chain,

@@ -2,7 +2,7 @@
 //! the energy balance and the counts, and the [`Outcome`] they make at the end. Every scheme
 //! reports through it.
 
-use super::chain::Chain;
+use super::chain::ChainDynamics;
 use super::state::State;
 use super::{EnergyBalance, Event, EventKind, History, Outcome, Recording, StopReason};
 use crate::model::cone::ModelReport;
@@ -156,7 +156,12 @@ impl Recorder {
     }
 
     /// The outcome of a run stopped at `state` for `reason`.
-    pub fn finish(mut self, reason: StopReason, state: &State, chain: &mut impl Chain) -> Outcome {
+    pub fn finish(
+        mut self,
+        reason: StopReason,
+        state: &State,
+        chain: &mut impl ChainDynamics,
+    ) -> Outcome {
         let (kin, pot) = chain.energy(&state.open, &state.phi, &state.rates);
         self.energy.kinetic_end = kin;
         self.energy.potential_change = pot - self.potential_start;

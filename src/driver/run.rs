@@ -1,6 +1,6 @@
 //! The event-driven run loop (thesis 3.3, SPEC §5).
 
-use super::chain::{not_positive_definite, Chain};
+use super::chain::{not_positive_definite, ChainDynamics};
 use super::events::rest::CannotTip;
 use super::events::settle::Settling;
 use super::events::{detect, forces, impact, opening, overturn, refine, rest, Found, Probe};
@@ -12,7 +12,7 @@ use super::{DriverError, Outcome, StopReason};
 
 /// Runs `problem` from its initial state to a stop; `progress` hears the fraction of the
 /// duration done (about every 1 %).
-pub(crate) fn run<C: Chain>(
+pub(crate) fn run<C: ChainDynamics>(
     mut problem: Problem<'_, C>,
     progress: Option<&mut dyn FnMut(f64)>,
 ) -> Result<Outcome, DriverError> {
@@ -57,7 +57,7 @@ struct Run {
 }
 
 impl Run {
-    fn new<C: Chain>(problem: &Problem<C>) -> Run {
+    fn new<C: ChainDynamics>(problem: &Problem<C>) -> Run {
         let opts = &problem.opts;
         let n = problem.chain.n_joints();
         let e_tip = problem.chain.tipping_energy();
@@ -71,7 +71,7 @@ impl Run {
         }
     }
 
-    fn start<C: Chain>(&mut self, problem: &mut Problem<C>) -> Result<(), DriverError> {
+    fn start<C: ChainDynamics>(&mut self, problem: &mut Problem<C>) -> Result<(), DriverError> {
         let state = &mut self.state;
         state.ag = problem.ag(0.0);
         let (_, potential) = problem.chain.energy(&state.open, &state.phi, &state.rates);
@@ -85,7 +85,10 @@ impl Run {
 
     /// The stop before the next step: the duration done, too many events, at rest for good, or
     /// provably safe.
-    fn stop_before_step<C: Chain>(&mut self, problem: &mut Problem<C>) -> Option<StopReason> {
+    fn stop_before_step<C: ChainDynamics>(
+        &mut self,
+        problem: &mut Problem<C>,
+    ) -> Option<StopReason> {
         let (t, stopping) = (self.state.t(), &problem.opts.stopping);
         if stopping.duration - t <= 1e-9 * problem.opts.stepping.dt {
             Some(StopReason::Duration)
@@ -100,7 +103,7 @@ impl Run {
     }
 
     /// Every interface closed: the column moves with the ground until the reaction test fails.
-    fn closed_step<C: Chain>(
+    fn closed_step<C: ChainDynamics>(
         &mut self,
         problem: &mut Problem<C>,
     ) -> Result<Option<StopReason>, DriverError> {
@@ -139,7 +142,7 @@ impl Run {
 
     /// Some interface open: integrate the open DOFs (thesis Eq. 6), check the step's end, and
     /// either move to the first event inside the step and apply its model, or accept the step.
-    fn rocking_step<C: Chain>(
+    fn rocking_step<C: ChainDynamics>(
         &mut self,
         problem: &mut Problem<C>,
     ) -> Result<Option<StopReason>, DriverError> {

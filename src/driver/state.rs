@@ -5,9 +5,9 @@
 //! motion give at that state — the accelerations, the reaction margins of the closed interfaces
 //! and the power of the ground motion — so that a step need not evaluate its start twice. The
 //! geometry is not state: it is a function of the angles, recomputed by the chain
-//! ([`super::chain::Chain`]) wherever it is needed.
+//! ([`super::chain::ChainDynamics`]) wherever it is needed.
 
-use super::chain::Chain;
+use super::chain::ChainDynamics;
 use super::DriverError;
 use crate::model::configuration::{open_dofs, Status};
 
@@ -133,14 +133,14 @@ impl State {
     }
 
     /// After a change of `statuses`: the open DOFs, and the chain told.
-    pub fn reconfigure(&mut self, chain: &mut impl Chain) {
+    pub fn reconfigure(&mut self, chain: &mut impl ChainDynamics) {
         self.open.clear();
         self.open.extend(open_dofs(&self.statuses));
         chain.reconfigured();
     }
 
     /// Evaluates the equations of motion at the state: accelerations, margins and power.
-    pub fn refresh(&mut self, chain: &mut impl Chain) -> Result<(), DriverError> {
+    pub fn refresh(&mut self, chain: &mut impl ChainDynamics) -> Result<(), DriverError> {
         let c = chain.check(
             &self.open,
             &self.statuses,

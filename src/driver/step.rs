@@ -3,7 +3,7 @@
 //! at zero). The start is kept, so that an event inside the step can be reached by integrating
 //! again over part of it.
 
-use super::chain::{not_positive_definite, Chain};
+use super::chain::{not_positive_definite, ChainDynamics};
 use super::integrator::Stepper;
 use super::problem::Problem;
 use super::state::{Clock, State};
@@ -50,7 +50,7 @@ impl Step {
     /// The next step from `state`: `dt`, the last two halved rather than leaving a sliver
     /// before `duration`, and ended exactly where the ground motion ends (its acceleration has a
     /// kink or a jump there, which a straddling step would integrate at first order only).
-    pub fn plan<C: Chain>(&mut self, problem: &Problem<C>, state: &State) {
+    pub fn plan<C: ChainDynamics>(&mut self, problem: &Problem<C>, state: &State) {
         let dt = problem.opts.stepping.dt;
         let t = state.t();
         let remaining = problem.opts.stopping.duration - t;
@@ -73,7 +73,7 @@ impl Step {
     }
 
     /// Integrates the open DOFs of `state` over the step: the end in `phi1`, `rates1`.
-    pub fn advance<C: Chain>(
+    pub fn advance<C: ChainDynamics>(
         &mut self,
         problem: &mut Problem<C>,
         state: &State,
@@ -93,7 +93,7 @@ impl Step {
 
     /// One integrator step over the fraction `s` of the step from its start; the result is in
     /// the stepper.
-    pub fn advance_to<C: Chain>(
+    pub fn advance_to<C: ChainDynamics>(
         &mut self,
         problem: &mut Problem<C>,
         state: &State,
@@ -103,7 +103,7 @@ impl Step {
         self.integrate(problem, state, s * self.h, ag)
     }
 
-    fn integrate<C: Chain>(
+    fn integrate<C: ChainDynamics>(
         &mut self,
         problem: &mut Problem<C>,
         state: &State,
@@ -134,7 +134,7 @@ impl Step {
 
     /// Accepts the step: `state` moves to its end, where the chain's last check was made
     /// (margins, power `power`).
-    pub fn accept(&mut self, state: &mut State, chain: &impl Chain, power: f64) {
+    pub fn accept(&mut self, state: &mut State, chain: &impl ChainDynamics, power: f64) {
         state.power = power;
         std::mem::swap(&mut state.phi, &mut self.phi1);
         std::mem::swap(&mut state.rates, &mut self.rates1);

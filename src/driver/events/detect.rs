@@ -6,7 +6,7 @@
 
 use super::locate::{hermite, hermite_crossing, hermite_rate, illinois};
 use super::{Found, Probe};
-use crate::driver::chain::Chain;
+use crate::driver::chain::ChainDynamics;
 use crate::driver::problem::Problem;
 use crate::driver::state::State;
 use crate::driver::step::Step;
@@ -14,7 +14,7 @@ use crate::driver::EventLocator;
 
 /// The first event of the step from `state` to `step`'s end, whose largest reaction margin is
 /// `margin1` (the chain's last check is the step's end).
-pub(crate) fn first_event<C: Chain>(
+pub(crate) fn first_event<C: ChainDynamics>(
     problem: &mut Problem<C>,
     state: &State,
     step: &Step,
@@ -55,7 +55,7 @@ pub(crate) fn first_event<C: Chain>(
 /// linear interpolation of the margins (thesis), or Illinois on the largest margin evaluated on
 /// the Hermite-interpolated state (with every interface closed: the straight column under the
 /// ground acceleration of each instant).
-pub(crate) fn opening_fraction<C: Chain>(
+pub(crate) fn opening_fraction<C: ChainDynamics>(
     problem: &mut Problem<C>,
     state: &State,
     step: &Step,
@@ -84,7 +84,7 @@ fn linear_opening(m0: &[f64], m1: &[f64]) -> f64 {
     s
 }
 
-fn hermite_opening<C: Chain>(
+fn hermite_opening<C: ChainDynamics>(
     problem: &mut Problem<C>,
     state: &State,
     step: &Step,

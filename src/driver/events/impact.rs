@@ -3,7 +3,7 @@
 //! may then settle the interface ([`super::settle`]).
 
 use super::settle::Settling;
-use crate::driver::chain::Chain;
+use crate::driver::chain::ChainDynamics;
 use crate::driver::problem::Problem;
 use crate::driver::recorder::Recorder;
 use crate::driver::state::State;
@@ -11,7 +11,7 @@ use crate::driver::{DriverError, EventKind};
 
 /// Impact of DOF `d` at the current instant (its angle is set to zero); the state is evaluated
 /// after it (and after settling).
-pub(crate) fn apply<C: Chain>(
+pub(crate) fn apply<C: ChainDynamics>(
     problem: &mut Problem<C>,
     state: &mut State,
     recorder: &mut Recorder,

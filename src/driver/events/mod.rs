@@ -14,7 +14,7 @@ pub(crate) mod refine;
 pub(crate) mod rest;
 pub(crate) mod settle;
 
-use super::chain::{Chain, Check};
+use super::chain::{ChainDynamics, Check};
 use super::state::State;
 
 /// An event found inside a step.
@@ -42,7 +42,7 @@ impl Probe {
 
     /// The checks at the probed state in `state`'s configuration under the ground acceleration
     /// `ag` (without the contact forces).
-    pub fn check(&self, chain: &mut impl Chain, state: &State, ag: f64) -> Check {
+    pub fn check(&self, chain: &mut impl ChainDynamics, state: &State, ag: f64) -> Check {
         chain.check(
             &state.open,
             &state.statuses,

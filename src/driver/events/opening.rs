@@ -4,7 +4,7 @@
 //! is judged a little past the instant, the state carried ahead by a Taylor step.
 
 use super::Probe;
-use crate::driver::chain::Chain;
+use crate::driver::chain::ChainDynamics;
 use crate::driver::problem::Problem;
 use crate::driver::recorder::Recorder;
 use crate::driver::state::State;
@@ -17,7 +17,7 @@ const LOOK_AHEAD: [f64; 4] = [1e-3, 1e-2, 1e-1, 1.0];
 /// (then `state` is the new configuration, evaluated, and the event recorded). `escalate`:
 /// widen the look-ahead up to one step while the reaction test holds there or the model keeps
 /// the configuration.
-pub(crate) fn judge<C: Chain>(
+pub(crate) fn judge<C: ChainDynamics>(
     problem: &mut Problem<C>,
     state: &mut State,
     probe: &mut Probe,

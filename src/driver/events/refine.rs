@@ -5,7 +5,7 @@
 
 use super::locate::{illinois, quintic};
 use super::{Found, Probe};
-use crate::driver::chain::{not_positive_definite, Chain};
+use crate::driver::chain::{not_positive_definite, ChainDynamics};
 use crate::driver::problem::Problem;
 use crate::driver::recorder::Recorder;
 use crate::driver::state::State;
@@ -22,7 +22,7 @@ const MAX_REFINE: usize = 8;
 /// afresh: every method (Wilson's acceleration state included) restarts from the equations of
 /// motion at the event.
 #[allow(clippy::too_many_arguments)]
-pub(crate) fn move_to_event<C: Chain>(
+pub(crate) fn move_to_event<C: ChainDynamics>(
     problem: &mut Problem<C>,
     state: &mut State,
     step: &mut Step,
@@ -82,7 +82,7 @@ pub(crate) fn move_to_event<C: Chain>(
 /// `Δt²/2` times the jerk, is then of round-off size). Falls back to the Hermite time (the
 /// plain locator) for a DOF not moving towards zero there or after `MAX_REFINE` iterates.
 /// Leaves the state at the returned fraction in the stepper.
-fn refine_impact<C: Chain>(
+fn refine_impact<C: ChainDynamics>(
     problem: &mut Problem<C>,
     state: &State,
     step: &mut Step,
@@ -150,7 +150,7 @@ fn refine_impact<C: Chain>(
 }
 
 /// Largest reaction margin after one integrator step of `s h` from the start of the step.
-fn margin_at<C: Chain>(
+fn margin_at<C: ChainDynamics>(
     problem: &mut Problem<C>,
     state: &State,
     step: &mut Step,
@@ -175,7 +175,7 @@ fn margin_at<C: Chain>(
 /// a bracket of the largest margin grown from `1e-7` of the step on the side of the root
 /// (factor 100; the step's ends bracket it in any case: `margin1 > 0` at the end), then
 /// Illinois down to `1e-14` s. Leaves the state at the returned fraction in the stepper.
-fn refine_opening<C: Chain>(
+fn refine_opening<C: ChainDynamics>(
     problem: &mut Problem<C>,
     state: &State,
     step: &mut Step,

@@ -3,7 +3,7 @@
 //! `stopping.quiet_after`), and the energy bound of `stopping.stop_when_safe` that proves a
 //! single block cannot tip in the rest of the motion ([`StopReason::CannotTip`]).
 
-use crate::driver::chain::Chain;
+use crate::driver::chain::ChainDynamics;
 use crate::driver::problem::Problem;
 use crate::driver::state::State;
 use crate::driver::StopReason;
@@ -24,7 +24,7 @@ pub(crate) struct CannotTip {
 
 impl CannotTip {
     /// The bound when it applies (asked for, one block, static tipping).
-    pub fn new<C: Chain>(problem: &Problem<C>, n: usize, e_tip: f64) -> Option<CannotTip> {
+    pub fn new<C: ChainDynamics>(problem: &Problem<C>, n: usize, e_tip: f64) -> Option<CannotTip> {
         let stopping = &problem.opts.stopping;
         (stopping.stop_when_safe && n == 1 && !stopping.continue_until_fallen).then(|| CannotTip {
             growth: problem.chain.energy_growth_bound(),
@@ -33,7 +33,7 @@ impl CannotTip {
     }
 
     /// Whether the bound proves, at `state`, that the block can never tip.
-    fn proves<C: Chain>(&self, problem: &mut Problem<C>, state: &State) -> bool {
+    fn proves<C: ChainDynamics>(&self, problem: &mut Problem<C>, state: &State) -> bool {
         let Some(impulse) = problem.motion.remaining_impulse(state.t()) else {
             return false;
         };
@@ -49,7 +49,7 @@ impl CannotTip {
 
 /// The stop before a step from `state` (after `steps` accepted steps), if the column is at rest
 /// for good or cannot tip.
-pub(crate) fn stop<C: Chain>(
+pub(crate) fn stop<C: ChainDynamics>(
     problem: &mut Problem<C>,
     state: &State,
     cannot_tip: Option<&CannotTip>,

@@ -4,7 +4,7 @@
 //! fraction of the energy that tips the column) or the impacts there come too close together;
 //! its DOF is removed by the kinetic-metric projection of the rates.
 
-use crate::driver::chain::Chain;
+use crate::driver::chain::ChainDynamics;
 use crate::driver::options::RunOptions;
 use crate::driver::recorder::Recorder;
 use crate::driver::state::State;
@@ -37,7 +37,7 @@ impl Settling {
     /// so (the chain's assembled system is the impact's).
     pub fn after_impact(
         &mut self,
-        chain: &mut impl Chain,
+        chain: &mut impl ChainDynamics,
         state: &mut State,
         recorder: &mut Recorder,
         k: usize,

@@ -59,7 +59,7 @@ fn reaction_test_agrees_with_check_configuration() {
         (seed >> 11) as f64 / (1u64 << 53) as f64
     };
     for exact in [false, true] {
-        let mut dynm = Dynamics::new(&col, G, exact, 1e-12, 0.7);
+        let mut dynm = ColumnDynamics::new(&col, G, exact, 1e-12, 0.7);
         for _ in 0..300 {
             let statuses: Vec<Status> = (0..n)
                 .map(|_| match (rnd() * 3.0) as i32 {
@@ -111,7 +111,7 @@ fn reaction_test_agrees_with_check_configuration() {
     }
 }
 
-fn dynm_margin(d: &Dynamics, dof: usize) -> f64 {
+fn dynm_margin(d: &ColumnDynamics, dof: usize) -> f64 {
     d.margin[dof]
 }
 
@@ -125,7 +125,7 @@ fn velocity_terms_match_the_column() {
     let statuses = [Status::OpenRight, Status::OpenLeft];
     let phi = [-0.1, 0.0, 0.0, 0.05];
     let rates = [-0.7, 0.0, 0.0, 0.4];
-    let mut dynm = Dynamics::new(&col, G, true, 1e-12, 0.7);
+    let mut dynm = ColumnDynamics::new(&col, G, true, 1e-12, 0.7);
     let mut mass = vec![0.0; 16];
     let mut load = vec![0.0; 4];
     dynm.full_system(&statuses, 0.3, &phi, &rates, &mut mass, &mut load);

@@ -5,8 +5,8 @@ mod integrators;
 mod single_block;
 mod thesis;
 
-use super::chain::{Chain, Equations};
-use super::dynamics::Dynamics;
+use super::chain::{ChainDynamics, Equations};
+use super::dynamics::ColumnDynamics;
 use super::reference::SingleBlockExact;
 use super::*;
 use crate::ground::{FnMotion, NoMotion};
