@@ -108,6 +108,9 @@
 // thesis Eq. 22–23, Fig. 51): `θ = m R²`.
 #define ALPHA_POINT_MASS 1.0
 
+// A planar rigid map `x ↦ R(angle) x + shift` (the default is the identity).
+typedef struct RigidMap RigidMap;
+
 // Options of both models. Passing NULL means `{1, 0, 1e-12}`.
 typedef struct RockingOptions {
   // Consecutive impacts per closing: 1 = Housner, 2 = one bump in the middle (the thesis's
@@ -145,6 +148,8 @@ typedef struct RockingReport {
   // Estimate of the condition number of the chosen configuration's (scaled) system.
   double condition_estimate;
 } RockingReport;
+
+
 
 
 
