@@ -155,7 +155,7 @@ fn continuous_reference_values() {
         (0.30, 0.518),
     ] {
         let arch = Arch::new(1.0, tr, PI);
-        let m = arch.continuous_collapse();
+        let m = arch.continuous_collapse(36);
         assert_printed(m.lambda, printed, 3, &format!("λ at t/R = {tr}"));
         let thrust = arch.thrust(m.hinges).unwrap();
         assert!(arch.admissible(thrust, &fine, 1e-6), "t/R = {tr}");
@@ -180,19 +180,39 @@ fn continuous_reference_values() {
     }
 }
 
-/// Minimum thickness under self-weight with continuous hinges: t/R = 0.1075 (Milankovitch).
-#[test]
-fn continuous_minimum_thickness() {
-    let (mut lo, mut hi) = (0.08, 0.14);
-    while hi - lo > 1e-7 {
+/// Minimum t/R under self-weight with continuous hinges (bisection on the sign of λ).
+fn continuous_minimum(tolerance: f64) -> f64 {
+    let (mut lo, mut hi) = (0.1, 0.115);
+    while hi - lo > tolerance {
         let mid = 0.5 * (lo + hi);
-        if Arch::new(1.0, mid, PI).continuous_collapse().lambda < 0.0 {
+        if Arch::new(1.0, mid, PI).continuous_collapse(18).lambda < 0.0 {
             lo = mid;
         } else {
             hi = mid;
         }
     }
-    assert_printed(0.5 * (lo + hi), 0.1075, 4, "minimum t/R");
+    0.5 * (lo + hi)
+}
+
+/// Minimum t/R under self-weight with hinges at the joints of `n` voussoirs.
+fn discrete_minimum(n: usize) -> f64 {
+    let sections = joints(n);
+    let (mut lo, mut hi) = (0.02, 0.14);
+    while hi - lo > 1e-9 {
+        let mid = 0.5 * (lo + hi);
+        if Arch::new(1.0, mid, PI).collapses_under_gravity(&sections) {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    0.5 * (lo + hi)
+}
+
+/// Minimum thickness under self-weight with continuous hinges: t/R = 0.1075 (Milankovitch).
+#[test]
+fn continuous_minimum_thickness() {
+    assert_printed(continuous_minimum(1e-6), 0.1075, 4, "minimum t/R");
 }
 
 /// The opening model starts to move exactly at the discrete collapse multiplier, with its four
@@ -200,7 +220,7 @@ fn continuous_minimum_thickness() {
 #[test]
 fn opening_model_onset_is_the_collapse_multiplier() {
     for (tr, continuous) in [(0.15, 0.144), (0.20, 0.284)] {
-        let lc = Arch::new(1.0, tr, PI).continuous_collapse().lambda;
+        let lc = Arch::new(1.0, tr, PI).continuous_collapse(36).lambda;
         assert_printed(lc, continuous, 3, "continuous λ");
         for n in [5usize, 8, 12, 20] {
             let arch = Arch::new(5.0, 5.0 * tr, PI);
@@ -241,22 +261,9 @@ fn opening_model_onset_is_the_collapse_multiplier() {
 /// refined (nested joint sets: 6, 12, 24 voussoirs).
 #[test]
 fn self_weight_minimum_thickness() {
-    let t_min = |n: usize| {
-        let sections = joints(n);
-        let (mut lo, mut hi) = (0.02, 0.14);
-        while hi - lo > 1e-9 {
-            let mid = 0.5 * (lo + hi);
-            if Arch::new(1.0, mid, PI).collapses_under_gravity(&sections) {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
-        }
-        0.5 * (lo + hi)
-    };
     let mut previous = 0.0;
     for n in [6usize, 12, 24] {
-        let t = t_min(n);
+        let t = discrete_minimum(n);
         assert!(t < 0.1075 && t >= previous - 1e-9, "N = {n}: t_min {t}");
         previous = t;
         for (factor, opens) in [(0.999, true), (1.001, false)] {
@@ -318,12 +325,23 @@ fn capped_colonnade_uplift_is_the_single_column_one() {
 }
 
 /// The table of `docs/arches.md`: λ against the number of voussoirs, the onset found by the
-/// opening model, the hinges.
+/// opening model, the hinges; the minimum thickness.
 #[test]
 #[ignore]
 fn onset_table() {
+    println!("continuous minimum t/R = {:.6}", continuous_minimum(1e-8));
+    for n in [4usize, 6, 8, 10, 12, 16, 20, 24, 36] {
+        let t = discrete_minimum(n);
+        let below = Onset::new(t * (1.0 - 1e-6), n).open(0.0, Solver::Projection);
+        let above = Onset::new(t * (1.0 + 1e-6), n).open(0.0, Solver::Projection);
+        println!(
+            "N = {n}: minimum t/R = {t:.6}; opening model at (1 ∓ 1e-6) t_min: {:?} / {:?}",
+            below.map(|st| hinges_of(&st)),
+            above.map(|st| hinges_of(&st))
+        );
+    }
     for tr in [0.15, 0.20] {
-        let lc = Arch::new(1.0, tr, PI).continuous_collapse();
+        let lc = Arch::new(1.0, tr, PI).continuous_collapse(36);
         println!(
             "t/R = {tr}: continuous λ = {:.5}, hinges {:?}",
             lc.lambda,

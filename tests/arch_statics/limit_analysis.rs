@@ -243,11 +243,11 @@ impl Arch {
         best
     }
 
-    /// Least multiplier with hinges anywhere: the best mechanism on a grid of sections, then a
-    /// pattern search on the four hinge angles (faces kept).
-    pub fn continuous_collapse(&self) -> Mechanism {
-        let grid: Vec<f64> = (0..=36)
-            .map(|k| 2.0 * self.beta * k as f64 / 36.0)
+    /// Least multiplier with hinges anywhere: the best mechanism on a grid of `grid + 1`
+    /// sections, then a pattern search on the four hinge angles (faces kept).
+    pub fn continuous_collapse(&self, grid: usize) -> Mechanism {
+        let grid: Vec<f64> = (0..=grid)
+            .map(|k| 2.0 * self.beta * k as f64 / grid as f64)
             .collect();
         let mut best = self.discrete_collapse(&grid).expect("a mechanism exists");
         let mut step = 2.0 * self.beta / 72.0;

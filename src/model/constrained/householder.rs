@@ -118,27 +118,49 @@ impl PivotedQr {
         }
     }
 
-    /// `A ← Qᵀ A Q` for the symmetric row-major `k × k` matrix `a`.
+    /// `A ← Qᵀ A Q` for the symmetric row-major `k × k` matrix `a`, one reflector at a time as
+    /// the symmetric rank-two update `H A H = A − v uᵀ − u vᵀ` with `w = A v`,
+    /// `u = β w − ½ β² (vᵀw) v`.
     pub fn congruence(&mut self, a: &mut [f64]) {
         let k = self.k;
-        let mut col = std::mem::take(&mut self.work);
-        col.resize(k, 0.0);
+        let mut w = std::mem::take(&mut self.work);
         for s in 0..self.rank {
-            // Rows: A ← H_s A (each column), then columns: A ← A H_s (each row).
-            for j in 0..k {
-                for i in 0..k {
-                    col[i] = a[i * k + j];
-                }
-                self.reflect(s, &mut col);
-                for i in 0..k {
-                    a[i * k + j] = col[i];
+            let v = &self.vecs[s * k..s * k + (k - s)];
+            let beta = self.beta[s];
+            w.clear();
+            w.extend((0..k).map(|i| {
+                a[i * k + s..(i + 1) * k]
+                    .iter()
+                    .zip(v)
+                    .map(|(x, y)| x * y)
+                    .sum::<f64>()
+            }));
+            let gamma: f64 = v.iter().zip(&w[s..]).map(|(x, y)| x * y).sum();
+            let half = 0.5 * beta * beta * gamma;
+            for i in 0..k {
+                w[i] *= beta;
+                if i >= s {
+                    w[i] -= half * v[i - s];
                 }
             }
+            // Rows and columns before s: only the columns s.. change (A_ij −= u_i v_j).
             for i in 0..k {
-                self.reflect(s, &mut a[i * k..(i + 1) * k]);
+                let ui = w[i];
+                let vi = if i >= s { v[i - s] } else { 0.0 };
+                let row = &mut a[i * k..(i + 1) * k];
+                if vi == 0.0 {
+                    for (x, vj) in row[s..].iter_mut().zip(v) {
+                        *x -= ui * vj;
+                    }
+                } else {
+                    for (j, x) in row.iter_mut().enumerate() {
+                        let vj = if j >= s { v[j - s] } else { 0.0 };
+                        *x -= vi * w[j] + ui * vj;
+                    }
+                }
             }
         }
-        self.work = col;
+        self.work = w;
     }
 
     /// Solves `R11ᵀ u = (Πᵀ r)[..ρ]` (forward substitution) and returns the residual of the other
@@ -237,32 +259,50 @@ mod tests {
 
     #[test]
     fn congruence_matches_explicit_q() {
-        let (k, c) = (3, 1);
-        let mut kt = vec![1.0, 2.0, 2.0];
-        let mut qr = PivotedQr::default();
-        qr.factor(&mut kt, k, c, 1e-12);
-        let a0 = vec![4.0, 1.0, 0.5, 1.0, 3.0, 0.2, 0.5, 0.2, 2.0];
-        let mut a = a0.clone();
-        qr.congruence(&mut a);
-        // Explicit Q columns.
-        let mut q = [0.0; 9];
-        for j in 0..3 {
-            let mut e = vec![0.0; 3];
-            e[j] = 1.0;
-            qr.apply_q(&mut e);
-            for i in 0..3 {
-                q[i * 3 + j] = e[i];
-            }
-        }
-        for i in 0..3 {
-            for j in 0..3 {
-                let mut s = 0.0;
-                for p in 0..3 {
-                    for r in 0..3 {
-                        s += q[p * 3 + i] * a0[p * 3 + r] * q[r * 3 + j];
-                    }
+        // One reflector (k = 3) and three (k = 5, rank 3).
+        let cases: [(usize, usize, Vec<f64>); 2] = [
+            (3, 1, vec![1.0, 2.0, 2.0]),
+            (
+                5,
+                3,
+                vec![
+                    1.0, 0.0, 2.0, 0.5, 1.0, -1.0, -0.3, 0.2, 0.7, 2.0, 1.5, 0.1, 0.4, -0.6, 1.1,
+                ],
+            ),
+        ];
+        for (k, c, kt0) in cases {
+            let mut kt = kt0.clone();
+            let mut qr = PivotedQr::default();
+            qr.factor(&mut kt, k, c, 1e-12);
+            assert_eq!(qr.rank, c);
+            let a0: Vec<f64> = (0..k * k)
+                .map(|x| {
+                    let (i, j) = (x / k, x % k);
+                    let d = if i == j { 5.0 } else { 0.0 };
+                    d + 1.0 / (1.0 + (i + j) as f64)
+                })
+                .collect();
+            let mut a = a0.clone();
+            qr.congruence(&mut a);
+            let mut q = vec![0.0; k * k];
+            for j in 0..k {
+                let mut e = vec![0.0; k];
+                e[j] = 1.0;
+                qr.apply_q(&mut e);
+                for i in 0..k {
+                    q[i * k + j] = e[i];
                 }
-                assert!((s - a[i * 3 + j]).abs() < 1e-12);
+            }
+            for i in 0..k {
+                for j in 0..k {
+                    let mut s = 0.0;
+                    for p in 0..k {
+                        for r in 0..k {
+                            s += q[p * k + i] * a0[p * k + r] * q[r * k + j];
+                        }
+                    }
+                    assert!((s - a[i * k + j]).abs() < 1e-12, "k = {k}: ({i}, {j})");
+                }
             }
         }
     }
