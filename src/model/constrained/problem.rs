@@ -57,6 +57,19 @@ pub(crate) struct FaceWork {
     pub mu: Vec<f64>,
 }
 
+impl FaceWork {
+    /// Length of the projection of `e_idx` on the null space of the last face's constraint
+    /// columns: zero when generator `idx` of the face cannot move without breaking the
+    /// constraints (its column is independent of the others'), so that its exact step is zero.
+    pub fn null_weight(&self, idx: usize) -> f64 {
+        let k = self.y.len();
+        let mut e = vec![0.0; k];
+        e[idx] = 1.0;
+        self.qr.apply_qt(&mut e);
+        e[self.qr.rank..].iter().map(|x| x * x).sum::<f64>().sqrt()
+    }
+}
+
 /// What a face solve found besides `ŷ_S` and `μ` (left in [`FaceWork`]).
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct FaceInfo {

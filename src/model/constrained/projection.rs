@@ -22,6 +22,8 @@ use crate::model::constrained::problem::{ConstrainedProblem, FaceWork};
 
 /// Relative column norm under which a candidate column adds no rank.
 const RANK_TOLERANCE: f64 = 1e-10;
+/// Null-space weight under which a generator of the working set cannot move.
+const ESSENTIAL: f64 = 1e-9;
 
 fn not_converged(detail: impl Into<String>) -> RockingError {
     RockingError::new(ErrorKind::SolverDidNotConverge, detail)
@@ -145,6 +147,14 @@ fn relaxed(
             ));
         }
         let bland = zero_steps > p;
+        // A generator whose constraint column no other of the face can replace cannot move (its
+        // exact step is zero): keep it where it is rather than let round-off make it block, which
+        // would drop the rank of the working set.
+        for (idx, &i) in set.iter().enumerate() {
+            if cone.gens[i].bounded && ws.null_weight(idx) < ESSENTIAL {
+                ws.y[idx] = y[i];
+            }
+        }
         // Ratio test towards the face optimum.
         let mut alpha = 1.0_f64;
         let mut blocking: Option<usize> = None;
