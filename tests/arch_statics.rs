@@ -324,6 +324,93 @@ fn capped_colonnade_uplift_is_the_single_column_one() {
     }
 }
 
+/// Makris & Vassiliou (2013), Eq. of motion of the frame: with both columns rotated by `θ`
+/// (clockwise, about their right base corners) and the beam riding on their top left corners,
+/// `θ̈ = −p̂² [sin(α − θ) + (ü_g / g) cos(α − θ)]`, `p̂² = p² (1 + 2γ) / (1 + 3γ)`,
+/// `p² = 3g / (4R)`, `γ = m_beam / (2 m_column)`: the frame rocks like one column of the same
+/// slenderness with a modified frequency parameter. Checked at rotated, closed poses through the
+/// chain helpers (`M`, `q`, `G` projected on the mechanism) and through the opening model of a
+/// frame at rest in the mechanism.
+#[test]
+fn capped_colonnade_rocks_like_one_column() {
+    let (width, height, m_col, m_beam) = (0.6, 3.6, 1500.0, 2400.0);
+    let frame = CappedColonnade::frame(width, height, m_col, 3.0, 0.5, m_beam);
+    let chain = frame.chain().unwrap();
+    let nj = chain.n_joints();
+    let alpha = (width / height).atan();
+    let r = 0.5 * width.hypot(height);
+    let gamma = m_beam / (2.0 * m_col);
+    let p2 = 3.0 * GRAVITY / (4.0 * r) * (1.0 + 2.0 * gamma) / (1.0 + 3.0 * gamma);
+    // The mechanism's DOFs (phĭ_0, phî_1, phĭ_2, phî_3) per unit θ.
+    let dofs = [0, nj + 1, 2, nj + 3];
+    let z = [-1.0, 1.0, -1.0, 1.0];
+    let statuses = vec![
+        Status::OpenRight,
+        Status::OpenLeft,
+        Status::OpenRight,
+        Status::OpenLeft,
+    ];
+    for theta in [1e-9, 0.02, 0.08, 0.15] {
+        let mut phi = vec![0.0; 2 * nj];
+        for (&d, &zi) in dofs.iter().zip(&z) {
+            phi[d] = zi * theta;
+        }
+        let pose = chain.pose(&phi);
+        let residual = chain.closure_residual(&pose);
+        assert!(residual.iter().all(|x| x.abs() < 1e-12), "{residual:?}");
+        let mass = chain.mass_matrix(&pose);
+        let g = chain.closure_matrix(&pose);
+        let m = 2 * nj;
+        for row in 0..3 {
+            let gz: f64 = dofs
+                .iter()
+                .zip(&z)
+                .map(|(&d, zi)| g[row * m + d] * zi)
+                .sum();
+            assert!(gz.abs() < 1e-12, "the mechanism leaves the closure: {gz}");
+        }
+        for ag in [0.0, -0.4 * GRAVITY, 0.7 * GRAVITY] {
+            let q = chain.load_vector(&pose, ag, GRAVITY);
+            let m_eff: f64 = (0..4)
+                .map(|i| {
+                    (0..4)
+                        .map(|j| z[i] * mass[dofs[i] * m + dofs[j]] * z[j])
+                        .sum::<f64>()
+                })
+                .sum();
+            let q_eff: f64 = (0..4).map(|i| z[i] * q[dofs[i]]).sum();
+            let expected = -p2 * ((alpha - theta).sin() + ag / GRAVITY * (alpha - theta).cos());
+            assert!(
+                (q_eff / m_eff - expected).abs() <= 1e-12 * p2,
+                "θ = {theta}, a_g = {ag}: {} vs {expected}",
+                q_eff / m_eff
+            );
+            // The opening model of the frame at rest in the mechanism: nothing else opens, and
+            // its accelerations are those of the single column with p̂.
+            if expected > 0.0 {
+                for solver in [Solver::Enumerate, Solver::Projection] {
+                    let mut st = statuses.clone();
+                    let mut a = vec![0.0; m];
+                    let opts = ModelOptions {
+                        solver,
+                        ..ModelOptions::default()
+                    };
+                    opening_model_constrained(&mass, &q, &g, None, &mut st, &mut a, &opts).unwrap();
+                    assert_eq!(st, statuses);
+                    for (&d, zi) in dofs.iter().zip(&z) {
+                        assert!(
+                            (a[d] - zi * expected).abs() <= 1e-10 * p2,
+                            "θ = {theta}, a_g = {ag}, {solver:?}: {} vs {}",
+                            a[d],
+                            zi * expected
+                        );
+                    }
+                }
+            }
+        }
+    }
+}
+
 /// The table of `docs/arches.md`: λ against the number of voussoirs, the onset found by the
 /// opening model, the hinges; the minimum thickness.
 #[test]
