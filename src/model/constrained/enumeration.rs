@@ -4,6 +4,12 @@
 //! equality-constrained projection (SPEC §9), kept when feasible and kinematically admissible,
 //! and the one of least `f = ½ yᵀAy − bᵀy` is taken (for an impact or an opening from rest this
 //! is the highest kinetic energy; with a non-zero right-hand side only the minimisation is right).
+//!
+//! Unlike the column's enumeration there is no preference for faces that are stationary in
+//! their own cone: with constraints a face's multipliers are not unique when its closure columns
+//! lose rank (a loop at rest is statically indeterminate: three redundants), so first-order
+//! stationarity is a linear programme, not a sign test. Where the two best faces differ only at
+//! round-off the report's `tie` flag says so.
 
 use crate::error::RockingError;
 use crate::model::cone::{ConeSolution, Solver, TIE_GAP};

@@ -38,7 +38,10 @@ fn generators(statuses: &[Status]) -> Vec<Generator> {
 /// - `constraints`: the row-major `n_c × 2n` closure matrix `G` (possibly empty);
 /// - `constraint_rhs`: `r` (length `n_c`), `None` for zeros (a chain at rest).
 ///
-/// `report.changed` is true when a closed joint opened. On error nothing is modified.
+/// `report.changed` is true when a closed joint opened; `report.kinetic_after` is `½ aᵀMa` of
+/// the answer and `report.runner_up` is `−f` of the best other admissible configuration
+/// (`f = ½ aᵀMa − aᵀq`, which is `½ aᵀMa` at a face optimum when `r = 0`). On error nothing is
+/// modified.
 pub fn opening_model_constrained(
     mass: &[f64],
     load: &[f64],
