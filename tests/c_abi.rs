@@ -396,6 +396,34 @@ fn samples_json() -> String {
     )
 }
 
+/// `docs/c-api.md` with its status-code table (between the two markers) made from the table of
+/// `src/error.rs`.
+fn c_api_doc() -> String {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/c-api.md");
+    let doc = std::fs::read_to_string(path).unwrap();
+    let (begin, end) = (
+        "<!-- status codes: generated from src/error.rs by tests/c_abi.rs (make header) -->\n",
+        "<!-- end of status codes -->",
+    );
+    let start = doc.find(begin).expect("begin marker") + begin.len();
+    let stop = doc.find(end).expect("end marker");
+    let (name, _, message) = rocking::error::SUCCESS;
+    let mut table = format!(
+        "| code | name | `rocking_error_message` |\n|---:|---|---|\n| 0 | `{name}` | {message} |\n"
+    );
+    for kind in rocking::ErrorKind::ALL {
+        writeln!(
+            table,
+            "| {} | `{}` | {} |",
+            kind.code(),
+            kind.c_name(),
+            kind.message()
+        )
+        .unwrap();
+    }
+    format!("{}{table}{}", &doc[..start], &doc[stop..])
+}
+
 #[test]
 fn generated_samples_are_checked_in() {
     check_generated(
@@ -407,5 +435,10 @@ fn generated_samples_are_checked_in() {
         "tests/python/samples.json",
         &samples_json(),
         "src/samples.rs",
+    );
+    check_generated(
+        "docs/c-api.md",
+        &c_api_doc(),
+        "the status table of src/error.rs",
     );
 }

@@ -2,9 +2,9 @@
 //! ([`crate::impact_model`], [`crate::opening_model`], [`crate::check_configuration`],
 //! [`crate::model::interface_system::column_system`], [`crate::model::column::reduce`]).
 //!
-//! Every fallible export has one shape (see [`boundary`]): check the sizes, check the output
+//! Every fallible export has one shape (see `boundary.rs`): check the sizes, check the output
 //! pointers, copy the inputs, call the core, write the outputs — all inside
-//! [`boundary::status_call`], the panic boundary. Conventions (see `docs/c-api.md` and the header):
+//! `status_call`, the panic boundary. Conventions (see `docs/c-api.md` and the header):
 //! return 0 on success, a negative code for a bad call, a positive code when the call is valid but
 //! cannot be solved as asked; on any non-zero return no output is written;
 //! `rocking_last_error_message()` gives the detail of the last failure on the calling thread. No
