@@ -9,6 +9,7 @@ pub mod configuration;
 pub mod constrained;
 pub mod enumeration;
 pub mod impact;
+pub mod interface_system;
 pub mod opening;
 pub mod projection;
 pub mod single_block;
