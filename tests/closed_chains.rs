@@ -469,8 +469,21 @@ fn a_loop_without_its_closure_is_not_positive_definite() {
     )
     .unwrap_err();
     assert_eq!(e.kind, ErrorKind::NotPositiveDefinite);
-    // With G it is a valid problem: a thick arch under gravity stays closed.
+    // Only the rotation row of G: the cut joint's two massless DOFs, turning opposite ways,
+    // translate the support without kinetic energy — not positive definite on that null space.
     let g = chain.closure_matrix(&pose);
+    let e = opening_model_constrained(
+        &mass,
+        &load,
+        &g[..2 * nj],
+        None,
+        &mut st,
+        &mut a,
+        &ModelOptions::default(),
+    )
+    .unwrap_err();
+    assert_eq!(e.kind, ErrorKind::NotPositiveDefinite);
+    // With G it is a valid problem: a thick arch under gravity stays closed.
     for solver in [Solver::Enumerate, Solver::Projection] {
         let opts = ModelOptions {
             solver,
