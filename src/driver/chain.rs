@@ -1,10 +1,13 @@
 //! What the driver asks of a chain of rigid bodies (SPEC §1, §9): its equations of motion, the
 //! checks at a state, its energies, and the two models. The stepper and every event transition
-//! go through these traits, never through column code, so that a second kind of chain (a closed
-//! loop: an arch or a capped colonnade, whose models carry the closure `G v = 0` and whose
-//! opening has no reaction test) implements them without touching the integrators or the
-//! transitions. The column's implementation is `ColumnDynamics` (`dynamics.rs`) with the crate's
-//! models.
+//! go through these traits, never through column code. The column's implementation is
+//! `ColumnDynamics` (`dynamics.rs`) with the crate's models. A closed loop (an arch or a capped
+//! colonnade) implements them on [`crate::chain`]'s geometry with the models of
+//! [`crate::model::constrained`]: `assemble` then also builds the closure `G` and `Ġ v`, `impact`
+//! takes the set of joints closing at once, and `check`, without a reaction test in a loop, takes
+//! its opening margin from the opening model (e.g. the load power of the best admissible
+//! mechanism, which crosses zero where the loop starts to move) — without touching the
+//! integrators or the transitions.
 
 use super::DriverError;
 use crate::error::{ErrorKind, RockingError};
