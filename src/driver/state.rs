@@ -114,7 +114,8 @@ impl State {
     /// interface is closed).
     #[inline]
     pub fn sign(&self, d: usize) -> f64 {
-        self.statuses[d % self.n()].sign()
+        let n = self.n();
+        self.statuses[if d < n { d } else { d - n }].sign()
     }
 
     /// Largest reaction margin (`> 0`: a reaction test fails at this state).

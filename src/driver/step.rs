@@ -50,6 +50,7 @@ impl Step {
     /// The next step from `state`: `dt`, the last two halved rather than leaving a sliver
     /// before `duration`, and ended exactly where the ground motion ends (its acceleration has a
     /// kink or a jump there, which a straddling step would integrate at first order only).
+    #[inline]
     pub fn plan<C: ChainDynamics>(&mut self, problem: &Problem<C>, state: &State) {
         let dt = problem.opts.stepping.dt;
         let t = state.t();
@@ -73,6 +74,7 @@ impl Step {
     }
 
     /// Integrates the open DOFs of `state` over the step: the end in `phi1`, `rates1`.
+    #[inline]
     pub fn advance<C: ChainDynamics>(
         &mut self,
         problem: &mut Problem<C>,
@@ -103,6 +105,7 @@ impl Step {
         self.integrate(problem, state, s * self.h, ag)
     }
 
+    #[inline]
     fn integrate<C: ChainDynamics>(
         &mut self,
         problem: &mut Problem<C>,
@@ -134,6 +137,7 @@ impl Step {
 
     /// Accepts the step: `state` moves to its end, where the chain's last check was made
     /// (margins, power `power`).
+    #[inline]
     pub fn accept(&mut self, state: &mut State, chain: &impl ChainDynamics, power: f64) {
         state.power = power;
         std::mem::swap(&mut state.phi, &mut self.phi1);

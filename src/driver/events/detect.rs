@@ -14,6 +14,7 @@ use crate::driver::EventLocator;
 
 /// The first event of the step from `state` to `step`'s end, whose largest reaction margin is
 /// `margin1` (the chain's last check is the step's end).
+#[inline]
 pub(crate) fn first_event<C: ChainDynamics>(
     problem: &mut Problem<C>,
     state: &State,
