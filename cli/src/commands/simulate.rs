@@ -5,35 +5,40 @@
 //! after the simulation succeeded, each atomically.
 
 use std::fmt::Write as _;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+use clap::Args;
 use rocking::driver::{self, Event, EventKind, Outcome, StopReason};
 use rocking::ground::FnMotion;
 use rocking::{ModelReport, Status};
 use serde_json::{json, Value};
 
-use crate::output::{progress_bar, write_atomic};
+use crate::output::write_atomic;
 use crate::plot::{Chart, Marker, Series, Style, COLORS};
+use crate::progress;
 use crate::scene::{self, Scene};
 
+/// Options of `rocking simulate`.
+#[derive(Args, Debug)]
+pub struct SimulateArgs {
+    /// The scene file (JSON: blocks, excitation, settings; see examples/scenes).
+    pub scene: PathBuf,
+    /// Output directory (created if needed).
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Draw block rotations against time with the events marked (.svg or .png).
+    #[arg(long, value_parser = crate::plot::plot_path)]
+    pub plot: Option<PathBuf>,
+}
+
 /// Runs the command.
-pub fn run(scene_path: &Path, out: &Path, plot: Option<&Path>) -> Result<(), String> {
-    if let Some(p) = plot {
-        match p.extension().and_then(|e| e.to_str()) {
-            Some("svg") | Some("png") => {}
-            _ => {
-                return Err(format!(
-                    "--plot {}: the file must end in .svg or .png",
-                    p.display()
-                ))
-            }
-        }
-    }
+pub fn run(a: &SimulateArgs) -> Result<(), String> {
+    let (scene_path, out, plot) = (a.scene.as_path(), a.out.as_path(), a.plot.as_deref());
     let scene = scene::load(scene_path).map_err(|e| e.to_string())?;
     let excitation = &scene.excitation;
     let motion = FnMotion(|t| excitation.acceleration(t), excitation.end_time());
-    let bar = progress_bar(1000, "simulating");
+    let bar = progress::bar(1000, "simulating");
     let mut report = |fraction: f64| bar.set_position((fraction * 1000.0) as u64);
     let started = Instant::now();
     let outcome = driver::simulate(&scene.column, &motion, &scene.options, Some(&mut report))
@@ -240,19 +245,14 @@ fn chart(scene: &Scene, o: &Outcome) -> Result<Chart, String> {
     }
     for e in &o.events {
         let color = match e.kind {
-            EventKind::Impact => "#d62728",
-            EventKind::Opening => "#2ca02c",
-            EventKind::Settled => "#7f7f7f",
-            _ => "#000000",
+            EventKind::Impact => COLORS[1],
+            EventKind::Opening => COLORS[2],
+            EventKind::Settled => COLORS[7],
+            _ => (0, 0, 0),
         };
         chart.markers.push(Marker {
             x: e.t,
-            label: format!(
-                "{} {}",
-                kind_name(e.kind),
-                e.interface
-                    .map_or(String::new(), |k| format!("at interface {k}"))
-            ),
+            kind: kind_name(e.kind).to_string(),
             color,
         });
     }

@@ -1,0 +1,315 @@
+//! `rocking oas`: the overturning acceleration spectrum of a record (thesis Fig. 36, 37, 43)
+//! through `rocking::spectra::oas`, its summary (t₁ of Eq. 20, the Eq. 28 fit) and charts;
+//! `--merge` rebuilds the spectrum from level shards.
+
+use std::path::PathBuf;
+use std::time::Instant;
+
+use clap::Args;
+use rocking::spectra::{self, Oas, OasLevel, SizeSearch};
+use serde_json::{json, Value};
+
+use super::sweep::{OasGridArgs, Shard, SimulationArgs};
+use crate::output::{print_json, read_json};
+use crate::plot::{Chart, Scale, Series, Style, COLORS};
+use crate::progress;
+
+/// Options of `rocking oas`.
+#[derive(Args, Debug)]
+pub struct OasArgs {
+    /// The record (.AT2 in g, or plain text in m/s²).
+    #[arg(required_unless_present = "merge")]
+    pub record: Option<PathBuf>,
+    /// Rebuild the OAS from the JSON of `--shard` runs instead of computing it.
+    #[arg(long, num_args = 1.., value_name = "SHARD.json", conflicts_with = "record")]
+    pub merge: Vec<PathBuf>,
+    #[command(flatten)]
+    pub grid: OasGridArgs,
+    #[command(flatten)]
+    pub simulation: SimulationArgs,
+    /// Only the levels k with k % n == i (merge the shards with --merge).
+    #[arg(long, default_value_t = Shard::WHOLE, value_name = "i/n")]
+    pub shard: Shard,
+    /// JSON (the default).
+    #[arg(long, conflicts_with = "csv")]
+    pub json: bool,
+    /// CSV instead of JSON: one row per level.
+    #[arg(long)]
+    pub csv: bool,
+    /// Write charts PREFIX-oas.svg (against p, Fig. 36), PREFIX-transformed.svg (against f,
+    /// Fig. 37) and PREFIX-size.svg (against the size R, log axis).
+    #[arg(long, value_name = "PREFIX")]
+    pub svg: Option<PathBuf>,
+    /// With --svg: also write the charts as PNG.
+    #[arg(long, requires = "svg")]
+    pub png: bool,
+}
+
+/// Runs the command.
+pub fn run(a: &OasArgs) -> Result<(), String> {
+    let t0 = Instant::now();
+    let result = match &a.record {
+        None => {
+            let parts: Vec<Value> = a
+                .merge
+                .iter()
+                .map(|p| read_json(p))
+                .collect::<Result<_, _>>()?;
+            oas_from_json(&parts)?
+        }
+        Some(path) => {
+            let record = super::sweep::read(path)?;
+            let mut o = a.grid.options(&a.simulation);
+            o.levels = a.shard.keep(&o.levels);
+            let bar = progress::bar(o.levels.len() as u64, "OAS");
+            let tick = || bar.inc(1);
+            let r = spectra::oas(&record, &o, Some(&tick)).map_err(|e| e.to_string())?;
+            bar.finish_and_clear();
+            r
+        }
+    };
+    let seconds = t0.elapsed().as_secs_f64();
+    if a.csv {
+        println!("record,level,size,p,f,simulations");
+        for l in &result.levels {
+            let (size, p) = match l.largest_unsafe {
+                Some(i) => (result.sizes[i], result.monolith(result.sizes[i]).p),
+                None => (f64::NAN, f64::NAN),
+            };
+            println!(
+                "{},{},{size},{p},{},{}",
+                result.record,
+                l.level,
+                p * l.level,
+                l.simulations
+            );
+        }
+    } else {
+        print_json(&oas_json(&result, seconds))?;
+    }
+    if let Some(prefix) = &a.svg {
+        for (name, chart) in charts(&result) {
+            let file = |ext: &str| {
+                let mut s = prefix.as_os_str().to_owned();
+                s.push(format!("-{name}.{ext}"));
+                PathBuf::from(s)
+            };
+            chart.write(&file("svg"))?;
+            if a.png {
+                chart.write(&file("png"))?;
+            }
+        }
+    }
+    Ok(())
+}
+
+fn num(x: f64) -> Value {
+    if x.is_finite() {
+        json!(x)
+    } else {
+        Value::Null
+    }
+}
+
+fn oas_json(o: &Oas, seconds: f64) -> Value {
+    let s = o.summary();
+    let levels: Vec<Value> = o
+        .levels
+        .iter()
+        .map(|l| {
+            let pt = l.largest_unsafe.map(|i| {
+                let m = o.monolith(o.sizes[i]);
+                (o.sizes[i], m.p, m.p * l.level)
+            });
+            json!({
+                "level": l.level, "largest_unsafe": l.largest_unsafe,
+                "size": pt.map(|p| p.0), "p": pt.map(|p| p.1), "f": pt.map(|p| p.2),
+                "simulations": l.simulations,
+            })
+        })
+        .collect();
+    let check = s.t1.map(|t1| o.check(t1, s.fit));
+    json!({
+        "record": o.record, "slenderness": o.slenderness, "blocks": o.n_blocks,
+        "impacts": o.n_impacts, "search": format!("{:?}", o.search), "gravity": o.gravity,
+        "sizes": o.sizes, "levels": levels,
+        "summary": summary_json(o, seconds),
+        "conservative": check.map(|c| json!({
+            "eq21": c.eq21.len(), "eq21_approx": c.eq21_approx.len(),
+            "eq29": c.eq29.len(), "eq30": c.eq30.len(),
+        })),
+    })
+}
+
+/// The summary of an OAS (also a row of `rocking t1`).
+pub fn summary_json(o: &Oas, seconds: f64) -> Value {
+    let s = o.summary();
+    json!({
+        "record": o.record,
+        "t1": s.t1,
+        "t1_prime": s.fit.map(|f| num(f.t1_prime)),
+        "beta": s.fit.map(|f| num(f.beta)),
+        "f_min": s.f_min.map(|m| m.f),
+        "level_at_f_min": s.f_min.map(|m| m.level),
+        "size_at_f_min": s.f_min.map(|m| m.size),
+        "simulations": s.simulations,
+        "seconds": seconds,
+    })
+}
+
+/// Rebuilds an OAS from (merged) `oas --json` outputs.
+fn oas_from_json(parts: &[Value]) -> Result<Oas, String> {
+    let first = parts.first().ok_or("nothing to merge")?;
+    let get = |v: &Value, k: &str| v.get(k).cloned().ok_or(format!("missing field {k}"));
+    let mut levels: Vec<OasLevel> = Vec::new();
+    for p in parts {
+        for l in get(p, "levels")?.as_array().ok_or("levels: not a list")? {
+            levels.push(OasLevel {
+                level: l["level"].as_f64().ok_or("level")?,
+                largest_unsafe: l["largest_unsafe"].as_u64().map(|i| i as usize),
+                simulations: l["simulations"].as_u64().unwrap_or(0) as usize,
+            });
+        }
+    }
+    levels.sort_by(|a, b| a.level.total_cmp(&b.level));
+    let sizes: Vec<f64> = get(first, "sizes")?
+        .as_array()
+        .ok_or("sizes")?
+        .iter()
+        .filter_map(Value::as_f64)
+        .collect();
+    Ok(Oas {
+        record: first["record"].as_str().unwrap_or("").to_string(),
+        slenderness: first["slenderness"].as_f64().ok_or("slenderness")?,
+        n_blocks: first["blocks"].as_u64().unwrap_or(1) as usize,
+        n_impacts: first["impacts"].as_u64().unwrap_or(1) as u32,
+        search: if first["search"] == "Bisection" {
+            SizeSearch::Bisection
+        } else {
+            SizeSearch::Scan
+        },
+        sizes,
+        levels,
+        gravity: first["gravity"].as_f64().unwrap_or(9.81),
+    })
+}
+
+/// The charts of an OAS: against `p` (Fig. 36), against `f` (Fig. 37) and against the size.
+fn charts(o: &Oas) -> Vec<(&'static str, Chart)> {
+    let s = o.summary();
+    let b = o.boundary();
+    let i_cr = o.i_cr();
+    let lmax = o.levels.iter().map(|l| l.level).fold(1.0, f64::max);
+    let pmax = b.iter().map(|q| q.p).fold(1.0, f64::max) * 1.1;
+    let fmax = b.iter().map(|q| q.f).fold(1.0, f64::max) * 1.1;
+    let (rmin, rmax) = o
+        .sizes
+        .iter()
+        .fold((f64::INFINITY, 0.0_f64), |(lo, hi), &r| {
+            (lo.min(r), hi.max(r))
+        });
+    let ps: Vec<f64> = (1..=400).map(|k| pmax * k as f64 / 400.0).collect();
+    let rs: Vec<f64> = (0..=400)
+        .map(|k| rmin * (rmax / rmin).powf(k as f64 / 400.0))
+        .collect();
+    let dots = |points: Vec<(f64, f64)>| Series {
+        name: "largest unsafe size".into(),
+        points,
+        style: Style::Points,
+        color: COLORS[0],
+    };
+    let mut by_p = vec![dots(b.iter().map(|q| (q.p, q.level)).collect())];
+    let mut by_f = vec![dots(b.iter().map(|q| (q.f, q.level)).collect())];
+    let mut by_r = vec![dots(b.iter().map(|q| (q.size, q.level)).collect())];
+    if let Some(t1) = s.t1 {
+        let eq21 = |p: f64| rocking::design::simplified_oas(p, t1, i_cr);
+        let name = format!("Eq. 21, t1 = {t1:.3} s");
+        let curve = |points: Vec<(f64, f64)>| Series {
+            name: name.clone(),
+            points,
+            style: Style::Dashed,
+            color: COLORS[1],
+        };
+        by_p.push(curve(ps.iter().map(|&p| (p, eq21(p))).collect()));
+        by_r.push(curve(
+            rs.iter().map(|&r| (r, eq21(o.monolith(r).p))).collect(),
+        ));
+        by_f.push(Series {
+            name: format!("f_min = i_cr / t1 (Eq. 20), t1 = {t1:.3} s"),
+            points: vec![(i_cr / t1, 1.0), (i_cr / t1, lmax)],
+            style: Style::Dashed,
+            color: COLORS[1],
+        });
+        if let Some(fit) = s.fit {
+            let eq30 = |p: f64| rocking::design::improved_oas_eq30(p, t1, fit.t1_prime, fit.beta);
+            let name = format!(
+                "Eq. 30, t1' = {:.3} s, beta = {:.2}",
+                fit.t1_prime, fit.beta
+            );
+            let curve = |points: Vec<(f64, f64)>| Series {
+                name: name.clone(),
+                points,
+                style: Style::Dashed,
+                color: COLORS[2],
+            };
+            by_p.push(curve(ps.iter().map(|&p| (p, eq30(p))).collect()));
+            by_r.push(curve(
+                rs.iter().map(|&r| (r, eq30(o.monolith(r).p))).collect(),
+            ));
+            by_f.push(Series {
+                name: format!(
+                    "Eq. 28, t1' = {:.3} s, beta = {:.2}",
+                    fit.t1_prime, fit.beta
+                ),
+                points: vec![
+                    (1.0 / fit.beta + 1.0 / fit.t1_prime, 1.0),
+                    (lmax / fit.beta + 1.0 / fit.t1_prime, lmax),
+                ],
+                style: Style::Dashed,
+                color: COLORS[2],
+            });
+        }
+    }
+    let chart = |title: String, x_label: &str, x_scale, x_range, series| Chart {
+        title,
+        x_label: x_label.into(),
+        y_label: "a_p / a_p,min".into(),
+        x_scale,
+        x_range: Some(x_range),
+        y_range: Some((0.0, lmax)),
+        series,
+        ..Chart::default()
+    };
+    vec![
+        (
+            "oas",
+            chart(
+                format!("OAS, {}", o.record),
+                "p [1/s]",
+                Scale::Linear,
+                (0.0, pmax),
+                by_p,
+            ),
+        ),
+        (
+            "transformed",
+            chart(
+                format!("Transformed OAS, {}", o.record),
+                "f = p a_p / a_p,min [1/s]",
+                Scale::Linear,
+                (0.0, fmax),
+                by_f,
+            ),
+        ),
+        (
+            "size",
+            chart(
+                format!("OAS against the block size, {}", o.record),
+                "size R [m] (half diagonal)",
+                Scale::Log,
+                (rmin, rmax),
+                by_r,
+            ),
+        ),
+    ]
+}
