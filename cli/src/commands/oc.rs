@@ -140,7 +140,12 @@ pub fn run(a: &OcArgs) -> Result<(), String> {
             .filter_map(|(x, e)| e.map(|y| (*x, y)))
             .collect();
         Chart {
-            title: format!("Overturning curve, {}, {} block(s)", shape.name(), a.blocks),
+            title: format!(
+                "Overturning curve, {}, {} block{}",
+                shape.name(),
+                a.blocks,
+                if a.blocks == 1 { "" } else { "s" }
+            ),
             x_label: "p t_p".into(),
             y_label: "a_p / a_p,min".into(),
             x_scale: Scale::Log,

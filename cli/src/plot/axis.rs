@@ -242,6 +242,25 @@ fn fit(scale: Scale, lo: f64, hi: f64) -> (f64, f64, f64) {
         };
     }
     match scale {
+        Scale::Log if hi / lo <= 100.0 => {
+            // Two decades or less: round out to 1, 2 or 5 × 10ᵏ (those are then ticks).
+            let down = |v: f64| {
+                let d = 10f64.powf(v.log10().floor());
+                let m = [5.0, 2.0, 1.0]
+                    .into_iter()
+                    .find(|m| m * d <= v * (1.0 + 1e-12));
+                m.unwrap_or(1.0) * d
+            };
+            let up = |v: f64| {
+                let d = 10f64.powf(v.log10().floor());
+                let m = [1.0, 2.0, 5.0, 10.0]
+                    .into_iter()
+                    .find(|m| m * d >= v * (1.0 - 1e-12));
+                m.unwrap_or(10.0) * d
+            };
+            let (a, b) = (down(lo), up(hi));
+            (a, if b > a { b } else { 10.0 * a }, 0.0)
+        }
         Scale::Log => {
             let a = lo.log10().floor();
             let b = hi.log10().ceil().max(a + 1.0);
@@ -302,5 +321,10 @@ mod tests {
         let a = Axis::new(Scale::Log, Some((0.1, 10.0)), std::iter::empty());
         let labels: Vec<&str> = a.ticks.iter().filter_map(|t| t.1.as_deref()).collect();
         assert_eq!(labels, ["0.1", "0.2", "0.5", "1", "2", "5", "10"]);
+        // Within two decades the ends are 1, 2 or 5 × 10ᵏ, not whole decades.
+        let a = Axis::new(Scale::Log, None, [0.3, 4.0].into_iter());
+        assert_eq!((a.lo, a.hi), (0.2, 5.0));
+        let labels: Vec<&str> = a.ticks.iter().filter_map(|t| t.1.as_deref()).collect();
+        assert_eq!(labels, ["0.2", "0.5", "1", "2", "5"]);
     }
 }
