@@ -28,11 +28,19 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), String> {
     })
 }
 
-/// Prints `value` as pretty JSON on stdout.
+/// `value` as a JSON tree, its keys in alphabetical order (every JSON output of the CLI has them
+/// so, as `tests/golden` holds them; serde_json's map is sorted without `preserve_order`). Floats
+/// print as the shortest text that reads back to the same `f64` (ryu); NaN and infinities as
+/// `null`.
+pub fn json_tree(value: &impl serde::Serialize) -> Result<serde_json::Value, String> {
+    serde_json::to_value(value).map_err(|e| e.to_string())
+}
+
+/// Prints `value` as pretty JSON on stdout ([`json_tree`]'s key order).
 pub fn print_json(value: &impl serde::Serialize) -> Result<(), String> {
     println!(
         "{}",
-        serde_json::to_string_pretty(value).map_err(|e| e.to_string())?
+        serde_json::to_string_pretty(&json_tree(value)?).map_err(|e| e.to_string())?
     );
     Ok(())
 }

@@ -4,7 +4,7 @@
 use clap::{Args, Subcommand, ValueEnum};
 use rocking::design::{self, Branch, ImpulseFactor, MassDistribution, Pier};
 use rocking::model::column::GRAVITY;
-use serde_json::json;
+use serde::Serialize;
 
 use super::sweep::positive;
 use crate::output::print_json;
@@ -86,6 +86,21 @@ pub struct CheckArgs {
     pub exact_icr: bool,
 }
 
+/// `design width --json`.
+#[derive(Serialize)]
+struct WidthJson {
+    width: f64,
+    governing: Branch,
+    eq23: f64,
+    eq21_exact_icr: f64,
+    eq24: f64,
+    at_rest: f64,
+    height: f64,
+    pga: f64,
+    t1: f64,
+    mass: &'static str,
+}
+
 fn branch(b: Branch) -> &'static str {
     match b {
         Branch::NoRocking => "no-rocking",
@@ -108,11 +123,18 @@ fn width(a: &WidthArgs) -> Result<(), String> {
     let w = design::pier_width(l.height, l.pga, l.t1, l.mass.distribution(), l.g)
         .map_err(|e| e.to_string())?;
     if l.json {
-        print_json(&json!({
-            "width": w.required, "governing": branch(w.governing), "eq23": w.eq23,
-            "eq21_exact_icr": w.eq21_exact_icr, "eq24": w.eq24, "at_rest": w.at_rest,
-            "height": l.height, "pga": l.pga, "t1": l.t1, "mass": l.mass.name(),
-        }))?;
+        print_json(&WidthJson {
+            width: w.required,
+            governing: w.governing,
+            eq23: w.eq23,
+            eq21_exact_icr: w.eq21_exact_icr,
+            eq24: w.eq24,
+            at_rest: w.at_rest,
+            height: l.height,
+            pga: l.pga,
+            t1: l.t1,
+            mass: l.mass.name(),
+        })?;
     } else {
         println!(
             "required width B = {:.4} m ({} branch of Eq. 31)",
@@ -137,11 +159,7 @@ fn check(a: &CheckArgs) -> Result<(), String> {
     };
     let c = design::design_check(&pier, l.pga, l.t1, l.g, factor).map_err(|e| e.to_string())?;
     if l.json {
-        print_json(&json!({
-            "safe": c.safe, "a_p": c.a_p, "a_p_min": c.a_p_min, "p": c.p, "i_cr": c.i_cr,
-            "impulse_limit": c.impulse_limit, "limit": c.limit,
-            "governing": branch(c.governing), "utilisation": c.utilisation,
-        }))?;
+        print_json(&c)?;
     } else {
         println!(
             "{}: a_p = {:.4} m/s² {} limit {:.4} m/s² (utilisation {:.3})",

@@ -7,7 +7,7 @@ use std::time::Instant;
 
 use clap::Args;
 use rocking::spectra::{self, Oas, OasLevel, SizeSearch};
-use serde_json::{json, Value};
+use serde::{Deserialize, Serialize};
 
 use super::sweep::{OasGridArgs, Shard, SimulationArgs};
 use crate::output::{print_json, read_json};
@@ -50,12 +50,12 @@ pub fn run(a: &OasArgs) -> Result<(), String> {
     let t0 = Instant::now();
     let result = match &a.record {
         None => {
-            let parts: Vec<Value> = a
+            let parts: Vec<OasJson> = a
                 .merge
                 .iter()
                 .map(|p| read_json(p))
                 .collect::<Result<_, _>>()?;
-            oas_from_json(&parts)?
+            merged(parts)?
         }
         Some(path) => {
             let record = super::sweep::read(path)?;
@@ -85,7 +85,7 @@ pub fn run(a: &OasArgs) -> Result<(), String> {
             );
         }
     } else {
-        print_json(&oas_json(&result, seconds))?;
+        print_json(&OasJson::of(&result, seconds))?;
     }
     if let Some(prefix) = &a.svg {
         for (name, chart) in charts(&result) {
@@ -103,94 +103,131 @@ pub fn run(a: &OasArgs) -> Result<(), String> {
     Ok(())
 }
 
-fn num(x: f64) -> Value {
-    if x.is_finite() {
-        json!(x)
-    } else {
-        Value::Null
-    }
+/// One level of `oas --json`: the library's level and, when a size overturns, the largest
+/// unsafe one with its `p` and `f = p · level`.
+#[derive(Serialize, Deserialize)]
+struct Level {
+    #[serde(flatten)]
+    level: OasLevel,
+    size: Option<f64>,
+    p: Option<f64>,
+    f: Option<f64>,
 }
 
-fn oas_json(o: &Oas, seconds: f64) -> Value {
-    let s = o.summary();
-    let levels: Vec<Value> = o
-        .levels
-        .iter()
-        .map(|l| {
-            let pt = l.largest_unsafe.map(|i| {
-                let m = o.monolith(o.sizes[i]);
-                (o.sizes[i], m.p, m.p * l.level)
-            });
-            json!({
-                "level": l.level, "largest_unsafe": l.largest_unsafe,
-                "size": pt.map(|p| p.0), "p": pt.map(|p| p.1), "f": pt.map(|p| p.2),
-                "simulations": l.simulations,
-            })
-        })
-        .collect();
-    let check = s.t1.map(|t1| o.check(t1, s.fit));
-    json!({
-        "record": o.record, "slenderness": o.slenderness, "blocks": o.n_blocks,
-        "impacts": o.n_impacts, "search": format!("{:?}", o.search), "gravity": o.gravity,
-        "sizes": o.sizes, "levels": levels,
-        "summary": summary_json(o, seconds),
-        "conservative": check.map(|c| json!({
-            "eq21": c.eq21.len(), "eq21_approx": c.eq21_approx.len(),
-            "eq29": c.eq29.len(), "eq30": c.eq30.len(),
-        })),
-    })
+/// The summary of an OAS, also a row of `rocking t1` (with the `f_min` point flattened).
+#[derive(Serialize, Deserialize)]
+pub struct Summary {
+    pub record: String,
+    pub t1: Option<f64>,
+    pub t1_prime: Option<f64>,
+    pub beta: Option<f64>,
+    pub f_min: Option<f64>,
+    pub level_at_f_min: Option<f64>,
+    pub size_at_f_min: Option<f64>,
+    pub simulations: usize,
+    /// Wall time of the run [s].
+    pub seconds: f64,
 }
 
-/// The summary of an OAS (also a row of `rocking t1`).
-pub fn summary_json(o: &Oas, seconds: f64) -> Value {
-    let s = o.summary();
-    json!({
-        "record": o.record,
-        "t1": s.t1,
-        "t1_prime": s.fit.map(|f| num(f.t1_prime)),
-        "beta": s.fit.map(|f| num(f.beta)),
-        "f_min": s.f_min.map(|m| m.f),
-        "level_at_f_min": s.f_min.map(|m| m.level),
-        "size_at_f_min": s.f_min.map(|m| m.size),
-        "simulations": s.simulations,
-        "seconds": seconds,
-    })
-}
-
-/// Rebuilds an OAS from (merged) `oas --json` outputs.
-fn oas_from_json(parts: &[Value]) -> Result<Oas, String> {
-    let first = parts.first().ok_or("nothing to merge")?;
-    let get = |v: &Value, k: &str| v.get(k).cloned().ok_or(format!("missing field {k}"));
-    let mut levels: Vec<OasLevel> = Vec::new();
-    for p in parts {
-        for l in get(p, "levels")?.as_array().ok_or("levels: not a list")? {
-            levels.push(OasLevel {
-                level: l["level"].as_f64().ok_or("level")?,
-                largest_unsafe: l["largest_unsafe"].as_u64().map(|i| i as usize),
-                simulations: l["simulations"].as_u64().unwrap_or(0) as usize,
-            });
+impl Summary {
+    pub fn of(o: &Oas, seconds: f64) -> Summary {
+        let s = o.summary();
+        Summary {
+            record: o.record.clone(),
+            t1: s.t1,
+            t1_prime: s.fit.map(|f| f.t1_prime),
+            beta: s.fit.map(|f| f.beta),
+            f_min: s.f_min.map(|m| m.f),
+            level_at_f_min: s.f_min.map(|m| m.level),
+            size_at_f_min: s.f_min.map(|m| m.size),
+            simulations: s.simulations,
+            seconds,
         }
     }
-    levels.sort_by(|a, b| a.level.total_cmp(&b.level));
-    let sizes: Vec<f64> = get(first, "sizes")?
-        .as_array()
-        .ok_or("sizes")?
+}
+
+/// How many boundary points each simplified spectrum predicts safe although they overturn.
+#[derive(Serialize, Deserialize)]
+struct Conservative {
+    eq21: usize,
+    eq21_approx: usize,
+    eq29: usize,
+    eq30: usize,
+}
+
+/// `oas --json`, and what `--merge` reads back.
+#[derive(Serialize, Deserialize)]
+struct OasJson {
+    record: String,
+    slenderness: f64,
+    blocks: usize,
+    impacts: u32,
+    search: SizeSearch,
+    gravity: f64,
+    sizes: Vec<f64>,
+    levels: Vec<Level>,
+    summary: Summary,
+    conservative: Option<Conservative>,
+}
+
+impl OasJson {
+    fn of(o: &Oas, seconds: f64) -> OasJson {
+        let levels = o
+            .levels
+            .iter()
+            .map(|l| {
+                let size = l.largest_unsafe.map(|i| o.sizes[i]);
+                let p = size.map(|r| o.monolith(r).p);
+                Level {
+                    level: *l,
+                    size,
+                    p,
+                    f: p.map(|p| p * l.level),
+                }
+            })
+            .collect();
+        let s = o.summary();
+        OasJson {
+            record: o.record.clone(),
+            slenderness: o.slenderness,
+            blocks: o.n_blocks,
+            impacts: o.n_impacts,
+            search: o.search,
+            gravity: o.gravity,
+            sizes: o.sizes.clone(),
+            levels,
+            summary: Summary::of(o, seconds),
+            conservative: s.t1.map(|t1| {
+                let c = o.check(t1, s.fit);
+                Conservative {
+                    eq21: c.eq21.len(),
+                    eq21_approx: c.eq21_approx.len(),
+                    eq29: c.eq29.len(),
+                    eq30: c.eq30.len(),
+                }
+            }),
+        }
+    }
+}
+
+/// Rebuilds an OAS from the `oas --json` outputs of level shards: their levels, in level order,
+/// on the first one's grid and settings.
+fn merged(parts: Vec<OasJson>) -> Result<Oas, String> {
+    let mut levels: Vec<OasLevel> = parts
         .iter()
-        .filter_map(Value::as_f64)
+        .flat_map(|p| p.levels.iter().map(|l| l.level))
         .collect();
+    levels.sort_by(|a, b| a.level.total_cmp(&b.level));
+    let first = parts.into_iter().next().ok_or("nothing to merge")?;
     Ok(Oas {
-        record: first["record"].as_str().unwrap_or("").to_string(),
-        slenderness: first["slenderness"].as_f64().ok_or("slenderness")?,
-        n_blocks: first["blocks"].as_u64().unwrap_or(1) as usize,
-        n_impacts: first["impacts"].as_u64().unwrap_or(1) as u32,
-        search: if first["search"] == "Bisection" {
-            SizeSearch::Bisection
-        } else {
-            SizeSearch::Scan
-        },
-        sizes,
+        record: first.record,
+        slenderness: first.slenderness,
+        n_blocks: first.blocks,
+        n_impacts: first.impacts,
+        search: first.search,
+        sizes: first.sizes,
         levels,
-        gravity: first["gravity"].as_f64().unwrap_or(9.81),
+        gravity: first.gravity,
     })
 }
 

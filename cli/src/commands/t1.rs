@@ -5,10 +5,10 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use clap::Args;
-use rocking::spectra;
-use serde_json::{json, Value};
+use rocking::spectra::{self, SizeSearch};
+use serde::{Deserialize, Serialize};
 
-use super::oas::summary_json;
+use super::oas::Summary;
 use super::sweep::{OasGridArgs, Shard, SimulationArgs};
 use crate::output::{print_json, read_json};
 use crate::progress;
@@ -34,9 +34,21 @@ pub struct T1Args {
     pub json: bool,
 }
 
+/// One record's row of `t1 --json`: the summary of its OAS and the settings.
+#[derive(Serialize, Deserialize)]
+struct Row {
+    #[serde(flatten)]
+    summary: Summary,
+    file: String,
+    slenderness: f64,
+    blocks: usize,
+    dt_factor: f64,
+    search: SizeSearch,
+}
+
 /// Runs the command.
 pub fn run(a: &T1Args) -> Result<(), String> {
-    let rows: Vec<Value> = if a.merge.is_empty() {
+    let rows: Vec<Row> = if a.merge.is_empty() {
         let o = a.grid.options(&a.simulation);
         let files = a.shard.keep(&a.records);
         let bar = progress::bar((files.len() * o.levels.len()) as u64, "t1");
@@ -47,25 +59,23 @@ pub fn run(a: &T1Args) -> Result<(), String> {
             let t0 = Instant::now();
             let tick = || bar.inc(1);
             let r = spectra::oas(&record, &o, Some(&tick)).map_err(|e| e.to_string())?;
-            let mut v = summary_json(&r, t0.elapsed().as_secs_f64());
-            v["file"] = json!(f.display().to_string());
-            v["slenderness"] = json!(o.slenderness);
-            v["blocks"] = json!(o.n_blocks);
-            v["dt_factor"] = json!(a.simulation.dt_factor);
-            v["search"] = json!(format!("{:?}", o.search));
-            rows.push(v);
+            rows.push(Row {
+                summary: Summary::of(&r, t0.elapsed().as_secs_f64()),
+                file: f.display().to_string(),
+                slenderness: o.slenderness,
+                blocks: o.n_blocks,
+                dt_factor: a.simulation.dt_factor,
+                search: o.search,
+            });
         }
         bar.finish_and_clear();
         rows
     } else {
         let mut rows = Vec::new();
         for p in &a.merge {
-            match read_json(p)? {
-                Value::Array(v) => rows.extend(v),
-                _ => return Err(format!("{}: expected a JSON list", p.display())),
-            }
+            rows.extend(read_json::<Vec<Row>>(p)?);
         }
-        rows.sort_by(|x, y| x["file"].as_str().cmp(&y["file"].as_str()));
+        rows.sort_by(|x, y| x.file.cmp(&y.file));
         rows
     };
     if a.json {
@@ -73,14 +83,18 @@ pub fn run(a: &T1Args) -> Result<(), String> {
     } else {
         println!("record                          t1 [s]   t1' [s]  beta     f_min [1/s]");
         for r in &rows {
-            let f = |k: &str| r[k].as_f64().map_or("-".to_string(), |x| format!("{x:.3}"));
+            let s = &r.summary;
+            let f = |v: Option<f64>| {
+                v.filter(|x| x.is_finite())
+                    .map_or("-".to_string(), |x| format!("{x:.3}"))
+            };
             println!(
                 "{:<30} {:>8} {:>8} {:>8} {:>8}",
-                r["record"].as_str().unwrap_or(""),
-                f("t1"),
-                f("t1_prime"),
-                f("beta"),
-                f("f_min")
+                s.record,
+                f(s.t1),
+                f(s.t1_prime),
+                f(s.beta),
+                f(s.f_min)
             );
         }
     }
