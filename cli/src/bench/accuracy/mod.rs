@@ -304,8 +304,14 @@ fn chart(r: &SceneResult) -> Chart {
             c += 1;
         }
     }
-    let mut methods: Vec<&str> = r.peer.iter().map(|p| p.method.as_str()).collect();
-    methods.dedup();
+    // One series per scipy method that completed a run (failed runs come first in the peer's
+    // rows: a plain dedup listed a method twice, once without points).
+    let mut methods: Vec<&str> = Vec::new();
+    for p in r.peer.iter().filter(|p| p.failed.is_none()) {
+        if !methods.contains(&p.method.as_str()) {
+            methods.push(&p.method);
+        }
+    }
     for (i, m) in methods.iter().enumerate() {
         series.push(Series {
             name: format!("scipy {m}"),

@@ -1,11 +1,12 @@
 //! The scipy `solve_ivp` peer (`bench/peer/single_block_scipy.py`): its results, checked to be
 //! of the same scenes, judged against the same references.
 
+use std::collections::BTreeMap;
 use std::path::Path;
 
 use rocking::ground::excitation::{Excitation, Pulse};
 use rocking::model::single_block::housner_mu;
-use serde_json::Value;
+use serde::Deserialize;
 
 use super::metrics::{errors, Errors, Metrics};
 use super::scenes::BenchScene;
@@ -20,41 +21,48 @@ pub(super) struct PeerRow {
     pub(super) failed: Option<String>,
 }
 
+/// `bench/peer/results.json`: per scene key, the parameters and the runs; the runs that failed.
+#[derive(Deserialize)]
 pub(super) struct PeerData {
-    pub(super) scenes: Value,
-    pub(super) failures: Vec<Value>,
+    scenes: BTreeMap<String, PeerScene>,
+    #[serde(default)]
+    failures: Vec<Failure>,
+}
+
+#[derive(Deserialize)]
+struct PeerScene {
+    /// The scene as the peer simulated it (width, height, mass, duration, mu, gravity, and
+    /// theta0 or amplitude and half_period).
+    parameters: BTreeMap<String, f64>,
+    runs: Vec<Run>,
+}
+
+/// One `solve_ivp` run.
+#[derive(Deserialize)]
+struct Run {
+    method: String,
+    rtol: f64,
+    atol: f64,
+    wall_s: f64,
+    impact_times: Vec<f64>,
+    impact_losses: Vec<f64>,
+    peak: f64,
+    peak_after_first_impact: f64,
+    #[serde(default)]
+    overturned: bool,
+}
+
+/// A run that raised inside `solve_ivp`.
+#[derive(Deserialize)]
+struct Failure {
+    scene: String,
+    method: String,
+    rtol: f64,
+    error: String,
 }
 
 pub(super) fn read_peer(path: &Path) -> Result<PeerData, String> {
-    let text =
-        std::fs::read_to_string(path).map_err(|e| format!("--peer {}: {e}", path.display()))?;
-    let v: Value =
-        serde_json::from_str(&text).map_err(|e| format!("--peer {}: {e}", path.display()))?;
-    let scenes = v
-        .get("scenes")
-        .cloned()
-        .ok_or_else(|| format!("--peer {}: no \"scenes\"", path.display()))?;
-    let failures = v
-        .get("failures")
-        .and_then(Value::as_array)
-        .cloned()
-        .unwrap_or_default();
-    Ok(PeerData { scenes, failures })
-}
-
-pub(super) fn num(v: &Value, key: &str) -> Result<f64, String> {
-    v.get(key)
-        .and_then(Value::as_f64)
-        .ok_or_else(|| format!("peer results: missing number {key:?}"))
-}
-
-pub(super) fn nums(v: &Value, key: &str) -> Result<Vec<f64>, String> {
-    v.get(key)
-        .and_then(Value::as_array)
-        .ok_or_else(|| format!("peer results: missing array {key:?}"))?
-        .iter()
-        .map(|x| x.as_f64().ok_or_else(|| format!("peer results: {key:?}")))
-        .collect()
+    crate::output::read_json(path).map_err(|e| format!("--peer {e}"))
 }
 
 pub(super) fn peer_rows_for(
@@ -66,7 +74,6 @@ pub(super) fn peer_rows_for(
         return Ok(vec![]);
     };
     // The peer must have simulated the same scene.
-    let params = s.get("parameters").ok_or("peer results: no parameters")?;
     let blk = scene.column.blocks()[0];
     let mut expected = vec![
         ("width", blk.width),
@@ -89,7 +96,10 @@ pub(super) fn peer_rows_for(
         expected.push(("half_period", half_period));
     }
     for (k, v) in expected {
-        let got = num(params, k)?;
+        let got = *s
+            .parameters
+            .get(k)
+            .ok_or_else(|| format!("peer results, scene ({}): no parameter {k:?}", scene.key))?;
         if (got - v).abs() > 1e-12 * v.abs().max(1.0) {
             return Err(format!(
                 "peer results, scene ({}): {k} = {got}, the bench uses {v}",
@@ -98,59 +108,32 @@ pub(super) fn peer_rows_for(
         }
     }
     let mut rows = Vec::new();
-    for f in p
-        .failures
-        .iter()
-        .filter(|f| f.get("scene").and_then(Value::as_str) == Some(scene.key))
-    {
+    for f in p.failures.iter().filter(|f| f.scene == scene.key) {
         rows.push(PeerRow {
-            method: f
-                .get("method")
-                .and_then(Value::as_str)
-                .unwrap_or("?")
-                .to_string(),
-            rtol: num(f, "rtol")?,
+            method: f.method.clone(),
+            rtol: f.rtol,
             atol: f64::NAN,
             wall: f64::NAN,
             err: Errors::default(),
-            failed: Some(
-                f.get("error")
-                    .and_then(Value::as_str)
-                    .unwrap_or("?")
-                    .to_string(),
-            ),
+            failed: Some(f.error.clone()),
         });
     }
-    for run in s
-        .get("runs")
-        .and_then(Value::as_array)
-        .ok_or("peer results: no runs")?
-    {
-        let times = nums(run, "impact_times")?;
-        let losses = nums(run, "impact_losses")?;
-        let peak_key = if scene.peak_after_first_impact {
-            "peak_after_first_impact"
-        } else {
-            "peak"
-        };
+    for run in &s.runs {
         let m = Metrics {
-            impacts: times.iter().map(|&t| (t, 0)).collect(),
-            losses,
-            peak: vec![num(run, peak_key)?],
-            overturned: run
-                .get("overturned")
-                .and_then(Value::as_bool)
-                .unwrap_or(false),
+            impacts: run.impact_times.iter().map(|&t| (t, 0)).collect(),
+            losses: run.impact_losses.clone(),
+            peak: vec![if scene.peak_after_first_impact {
+                run.peak_after_first_impact
+            } else {
+                run.peak
+            }],
+            overturned: run.overturned,
         };
         rows.push(PeerRow {
-            method: run
-                .get("method")
-                .and_then(Value::as_str)
-                .unwrap_or("?")
-                .to_string(),
-            rtol: num(run, "rtol")?,
-            atol: num(run, "atol")?,
-            wall: num(run, "wall_s")?,
+            method: run.method.clone(),
+            rtol: run.rtol,
+            atol: run.atol,
+            wall: run.wall_s,
             err: errors(&m, reference),
             failed: None,
         });
