@@ -294,9 +294,9 @@ impl Chart {
 
     /// Image size in SVG pixels, and the title's lines.
     fn layout(&self, entries: &[Entry]) -> ((f64, f64), Vec<String>) {
-        let width = PLOT_WIDTH + Self::legend_width(entries);
+        let width = (PLOT_WIDTH + Self::legend_width(entries)).ceil();
         let title = wrap(&self.title, TITLE_FONT, width - 2.0 * PAD);
-        let height = HEIGHT + (title.len().max(1) - 1) as f64 * 1.3 * TITLE_FONT;
+        let height = (HEIGHT + (title.len().max(1) - 1) as f64 * 1.3 * TITLE_FONT).ceil();
         ((width, height), title)
     }
 
@@ -551,5 +551,39 @@ mod tests {
         assert!(lines.len() >= 2);
         assert!(lines.iter().all(|l| text_width(l, TITLE_FONT) <= 400.0));
         assert_eq!(lines.join(" "), t);
+    }
+
+    /// Both formats draw: the SVG has the title and every legend entry in full, the PNG is a
+    /// PNG of twice the SVG's size, and the image is widened for a long legend entry instead of
+    /// cutting it.
+    #[test]
+    fn svg_and_png_have_the_whole_legend() {
+        let long = "Eq. 30, t1' = 0.323 s, beta = 1.48 (a long legend entry)";
+        let chart = |name: &str| Chart {
+            title: "OAS, test".into(),
+            x_label: "p [1/s]".into(),
+            y_label: "a_p / a_p,min".into(),
+            series: vec![Series {
+                name: name.into(),
+                points: vec![(0.5, 1.0), (2.0, 3.0), (4.0, 9.7)],
+                style: Style::Dashed,
+                color: COLORS[2],
+            }],
+            ..Chart::default()
+        };
+        let svg = chart(long).to_svg().unwrap();
+        assert!(svg.starts_with("<svg"));
+        assert!(svg.contains("OAS, test"));
+        assert!(svg.contains("beta = 1.48 (a long legend entry)"));
+        let width = |svg: &str| -> u32 {
+            let w = svg.split("width=\"").nth(1).unwrap();
+            w[..w.find('"').unwrap()].parse().unwrap()
+        };
+        let short = chart("x").to_svg().unwrap();
+        assert!(width(&svg) as f64 >= width(&short) as f64 + text_width(long, LEGEND_FONT) - 20.0);
+        let png = chart(long).to_png().unwrap();
+        assert_eq!(&png[..8], b"\x89PNG\r\n\x1a\n");
+        let png_width = u32::from_be_bytes(png[16..20].try_into().unwrap());
+        assert_eq!(png_width, 2 * width(&svg));
     }
 }
