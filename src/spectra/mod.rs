@@ -21,19 +21,22 @@
 //! every point is computed independently of the others and results are collected in order, so
 //! they are bitwise identical whatever the number of threads.
 
-use std::fmt;
-
 use crate::driver::{overturns, DriverError, Recording, SimulationOptions};
 use crate::ground::excitation::{ExcitationError, Pulse};
-use crate::ground::records::Record;
+use crate::ground::records::{Record, RecordError};
 use crate::ground::GroundMotion;
 use crate::model::column::{Block, Column, ColumnError};
 use crate::model::single_block::{self, ALPHA_UNIFORM};
+use crate::validate::{all_positive, non_negative, positive, InvalidValue};
 
 /// Why a sweep could not run.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum SpectraError {
-    /// An option is invalid.
+    /// A number of the options is out of its range.
+    #[error("{0}")]
+    Invalid(#[from] InvalidValue),
+    /// An option is invalid otherwise (an empty or unsorted grid, a record without motion).
+    #[error("{field}: {reason}")]
     InvalidOption {
         /// Field name.
         field: &'static str,
@@ -41,40 +44,17 @@ pub enum SpectraError {
         reason: String,
     },
     /// A column could not be built.
-    Column(ColumnError),
+    #[error("column: {0}")]
+    Column(#[from] ColumnError),
     /// A pulse could not be built.
-    Excitation(ExcitationError),
+    #[error("pulse: {0}")]
+    Excitation(#[from] ExcitationError),
+    /// The record is invalid.
+    #[error("record: {0}")]
+    Record(#[from] RecordError),
     /// A time history failed.
-    Driver(DriverError),
-}
-
-impl fmt::Display for SpectraError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            SpectraError::InvalidOption { field, reason } => write!(f, "{field}: {reason}"),
-            SpectraError::Column(e) => write!(f, "column: {e}"),
-            SpectraError::Excitation(e) => write!(f, "pulse: {e}"),
-            SpectraError::Driver(e) => write!(f, "simulation: {e}"),
-        }
-    }
-}
-
-impl std::error::Error for SpectraError {}
-
-impl From<ColumnError> for SpectraError {
-    fn from(e: ColumnError) -> SpectraError {
-        SpectraError::Column(e)
-    }
-}
-impl From<ExcitationError> for SpectraError {
-    fn from(e: ExcitationError) -> SpectraError {
-        SpectraError::Excitation(e)
-    }
-}
-impl From<DriverError> for SpectraError {
-    fn from(e: DriverError) -> SpectraError {
-        SpectraError::Driver(e)
-    }
+    #[error("simulation: {0}")]
+    Driver(#[from] DriverError),
 }
 
 fn invalid(field: &'static str, reason: impl Into<String>) -> SpectraError {
@@ -82,6 +62,18 @@ fn invalid(field: &'static str, reason: impl Into<String>) -> SpectraError {
         field,
         reason: reason.into(),
     }
+}
+
+/// `n_blocks >= 1`.
+fn at_least_one_block(n_blocks: usize) -> Result<(), InvalidValue> {
+    if n_blocks == 0 {
+        return Err(InvalidValue::new(
+            "n_blocks",
+            n_blocks,
+            "must be at least 1 (a column needs a block)",
+        ));
+    }
+    Ok(())
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -133,21 +125,9 @@ pub fn column_of_size(
     slenderness: f64,
     n_blocks: usize,
 ) -> Result<Column, SpectraError> {
-    if !(size.is_finite() && size > 0.0) {
-        return Err(invalid(
-            "size",
-            format!("must be finite and > 0, got {size}"),
-        ));
-    }
-    if !(slenderness.is_finite() && slenderness > 0.0) {
-        return Err(invalid(
-            "slenderness",
-            format!("must be finite and > 0, got {slenderness}"),
-        ));
-    }
-    if n_blocks == 0 {
-        return Err(invalid("n_blocks", "a column needs at least one block"));
-    }
+    positive("size", size)?;
+    positive("slenderness", slenderness)?;
+    at_least_one_block(n_blocks)?;
     let width = 2.0 * size / (1.0 + slenderness * slenderness).sqrt();
     let height = slenderness * width;
     let n = n_blocks as f64;
@@ -232,15 +212,9 @@ impl TimeStep {
     }
 
     fn validate(&self) -> Result<(), SpectraError> {
-        for (field, v) in [
-            ("time_step.record_fraction", self.record_fraction),
-            ("time_step.pulse_fraction", self.pulse_fraction),
-            ("time_step.block_fraction", self.block_fraction),
-        ] {
-            if !(v.is_finite() && v > 0.0) {
-                return Err(invalid(field, format!("must be finite and > 0, got {v}")));
-            }
-        }
+        positive("time_step.record_fraction", self.record_fraction)?;
+        positive("time_step.pulse_fraction", self.pulse_fraction)?;
+        positive("time_step.block_fraction", self.block_fraction)?;
         Ok(())
     }
 }
@@ -290,12 +264,7 @@ impl Default for SweepOptions {
 impl SweepOptions {
     fn validate(&self) -> Result<(), SpectraError> {
         self.time_step.validate()?;
-        if !(self.tail.is_finite() && self.tail >= 0.0) {
-            return Err(invalid(
-                "tail",
-                format!("must be finite and >= 0, got {}", self.tail),
-            ));
-        }
+        non_negative("tail", self.tail)?;
         Ok(())
     }
 
@@ -530,22 +499,8 @@ pub fn overturning_curve(
     progress: Option<Progress<'_>>,
 ) -> Result<Oc, SpectraError> {
     options.validate()?;
-    for &t in t_p {
-        if !(t.is_finite() && t > 0.0) {
-            return Err(invalid(
-                "t_p",
-                format!("durations must be finite and > 0, got {t}"),
-            ));
-        }
-    }
-    for &a in a_p {
-        if !(a.is_finite() && a > 0.0) {
-            return Err(invalid(
-                "a_p",
-                format!("amplitudes must be finite and > 0, got {a}"),
-            ));
-        }
-    }
+    all_positive("t_p", t_p)?;
+    all_positive("a_p", a_p)?;
     let rows = map_indexed(t_p.len(), |i| {
         let row: Result<Vec<bool>, SpectraError> = a_p
             .iter()
@@ -645,27 +600,19 @@ impl Default for OasOptions {
 impl OasOptions {
     fn validate(&self) -> Result<(), SpectraError> {
         self.sweep.validate()?;
-        if !(self.slenderness.is_finite() && self.slenderness > 0.0) {
-            return Err(invalid("slenderness", "must be finite and > 0"));
+        positive("slenderness", self.slenderness)?;
+        all_positive("levels", &self.levels)?;
+        if self.sizes.is_empty() {
+            return Err(invalid("sizes", "needs at least one size"));
         }
-        if self.levels.iter().any(|l| !(l.is_finite() && *l > 0.0)) {
-            return Err(invalid("levels", "every level must be finite and > 0"));
-        }
-        if self.sizes.is_empty() || self.sizes.iter().any(|r| !(r.is_finite() && *r > 0.0)) {
-            return Err(invalid(
-                "sizes",
-                "needs at least one size, each finite and > 0",
-            ));
-        }
+        all_positive("sizes", &self.sizes)?;
         if self.sizes.windows(2).any(|w| w[1] >= w[0]) {
             return Err(invalid(
                 "sizes",
                 "must be strictly decreasing (largest first)",
             ));
         }
-        if self.n_blocks == 0 {
-            return Err(invalid("n_blocks", "must be >= 1"));
-        }
+        at_least_one_block(self.n_blocks)?;
         Ok(())
     }
 }
@@ -1040,9 +987,7 @@ pub fn oas(
     progress: Option<Progress<'_>>,
 ) -> Result<Oas, SpectraError> {
     options.validate()?;
-    record
-        .validate()
-        .map_err(|e| invalid("record", e.to_string()))?;
+    record.validate()?;
     let prepared = PreparedRecord::new(record)?;
     let levels = map_indexed(options.levels.len(), |k| {
         let r = search_level(&prepared, options.levels[k], options);

@@ -267,3 +267,23 @@ fn oas_energy_bound_changes_nothing_on_shared_records() {
         verdicts_with_and_without_energy_bound(&record, &grid);
     }
 }
+
+#[test]
+fn invalid_options_name_the_field() {
+    let record = bundled_record();
+    let message = |o: &OasOptions| oas(&record, o, None).unwrap_err().to_string();
+    let mut o = small_grid();
+    o.levels[3] = -1.0;
+    assert_eq!(
+        message(&o),
+        "levels[3] = -1.0: must be a finite number greater than zero"
+    );
+    let mut o = small_grid();
+    o.sweep.time_step.block_fraction = f64::NAN;
+    assert!(message(&o).starts_with("time_step.block_fraction = NaN"));
+    let mut o = small_grid();
+    o.sizes.reverse();
+    assert!(message(&o).starts_with("sizes: "));
+    let e = column_of_size(1.0, 12.0, 0).unwrap_err().to_string();
+    assert!(e.starts_with("n_blocks = 0: "), "{e}");
+}

@@ -16,12 +16,11 @@
 mod mavroeidis_papageorgiou;
 mod pulse;
 
-use std::fmt;
-
 pub use pulse::Pulse;
 
 use crate::ground::records::{Record, RecordError};
 use crate::model::column::GRAVITY;
+use crate::validate::InvalidValue;
 
 /// Ground acceleration of a time history.
 #[derive(Clone, Debug, PartialEq, Default)]
@@ -36,50 +35,20 @@ pub enum Excitation {
 }
 
 /// An invalid pulse or record parameter.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum ExcitationError {
-    /// A pulse parameter is out of range.
+    /// A pulse parameter (`amplitude`, `half_period`, `lobes`, `duration`, `frequency`, `gamma`,
+    /// `nu`) is out of range.
+    #[error("{pulse} pulse: {invalid}")]
     InvalidParameter {
         /// Pulse kind (`"half sines"`, `"rectangular"`, …).
         pulse: &'static str,
-        /// Field name (`amplitude`, `half_period`, `lobes`, `duration`, `frequency`, `gamma`, `nu`).
-        field: &'static str,
-        /// The offending value.
-        value: f64,
-        /// What is wrong with it.
-        reason: &'static str,
+        /// The field, its value and the rule it breaks.
+        invalid: InvalidValue,
     },
     /// The record is invalid.
-    Record(RecordError),
-}
-
-impl fmt::Display for ExcitationError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            ExcitationError::InvalidParameter {
-                pulse,
-                field,
-                value,
-                reason,
-            } => write!(f, "{pulse} pulse: {field} = {value}: {reason}"),
-            ExcitationError::Record(e) => write!(f, "record: {e}"),
-        }
-    }
-}
-
-impl std::error::Error for ExcitationError {
-    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
-        match self {
-            ExcitationError::Record(e) => Some(e),
-            ExcitationError::InvalidParameter { .. } => None,
-        }
-    }
-}
-
-impl From<RecordError> for ExcitationError {
-    fn from(e: RecordError) -> ExcitationError {
-        ExcitationError::Record(e)
-    }
+    #[error("record: {0}")]
+    Record(#[from] RecordError),
 }
 
 /// Largest `γ` accepted for the Mavroeidis–Papageorgiou pulse.

@@ -7,6 +7,7 @@ use std::f64::consts::PI;
 use super::mavroeidis_papageorgiou::{mp_peak_cached, mp_shape};
 use super::{fmt_num, ExcitationError, MP_GAMMA_MAX};
 use crate::model::column::GRAVITY;
+use crate::validate::{finite, positive, InvalidValue};
 
 /// A pulse-type ground acceleration. Every amplitude is in m/s² and may be negative (the pulse
 /// then starts towards −x); durations are in seconds. Build with the checked constructors
@@ -166,22 +167,15 @@ impl Pulse {
     /// `lobes ≥ 1`; for Mavroeidis–Papageorgiou `1 < γ ≤ 100` and `ν` finite. The error names
     /// the field.
     pub fn validate(&self) -> Result<(), ExcitationError> {
-        let pulse = self.kind();
-        let bad = |field, value, reason| {
-            Err(ExcitationError::InvalidParameter {
-                pulse,
-                field,
-                value,
-                reason,
+        self.check()
+            .map_err(|invalid| ExcitationError::InvalidParameter {
+                pulse: self.kind(),
+                invalid,
             })
-        };
-        let positive = |field, value: f64| {
-            if value.is_finite() && value > 0.0 {
-                Ok(())
-            } else {
-                bad(field, value, "must be finite and positive")
-            }
-        };
+    }
+
+    /// [`Pulse::validate`] without the pulse's name.
+    fn check(&self) -> Result<(), InvalidValue> {
         let amplitude = match *self {
             Pulse::HalfSines {
                 amplitude,
@@ -190,7 +184,7 @@ impl Pulse {
             } => {
                 positive("half_period", half_period)?;
                 if lobes == 0 {
-                    return bad("lobes", 0.0, "must be at least 1");
+                    return Err(InvalidValue::new("lobes", lobes, "must be at least 1"));
                 }
                 amplitude
             }
@@ -219,31 +213,24 @@ impl Pulse {
                 nu,
             } => {
                 positive("frequency", frequency)?;
-                if !(gamma.is_finite() && gamma > 1.0) {
-                    return bad("gamma", gamma, "must be finite and greater than 1");
-                }
-                if gamma > MP_GAMMA_MAX {
-                    return bad(
+                if !(gamma > 1.0 && gamma <= MP_GAMMA_MAX) {
+                    return Err(InvalidValue::new(
                         "gamma",
                         gamma,
-                        "must be at most 100 (a pulse, not a harmonic)",
-                    );
+                        "must be greater than 1 and at most 100 (a pulse, not a harmonic)",
+                    ));
                 }
-                if !nu.is_finite() {
-                    return bad("nu", nu, "must be finite");
-                }
+                finite("nu", nu)?;
                 amplitude
             }
         };
-        if !amplitude.is_finite() {
-            return bad("amplitude", amplitude, "must be finite");
-        }
+        finite("amplitude", amplitude)?;
         if self.end_time().is_infinite() {
-            return bad(
+            return Err(InvalidValue::new(
                 "duration",
                 self.end_time(),
                 "the pulse is too long to represent",
-            );
+            ));
         }
         Ok(())
     }

@@ -187,7 +187,7 @@ fn mp_cache_follows_parameter_changes() {
 #[test]
 fn validation_names_the_field() {
     let field = |r: Result<Pulse, ExcitationError>| match r {
-        Err(ExcitationError::InvalidParameter { field, .. }) => field,
+        Err(ExcitationError::InvalidParameter { invalid, .. }) => invalid.field,
         other => panic!("expected an error, got {other:?}"),
     };
     assert_eq!(field(Pulse::half_sines(1.0, 0.5, 0)), "lobes");

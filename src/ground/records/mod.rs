@@ -19,7 +19,6 @@ mod plain;
 mod record;
 mod synthetic;
 
-use std::fmt;
 use std::path::{Path, PathBuf};
 
 pub use at2::{parse_at2, read_at2, write_at2};
@@ -32,10 +31,13 @@ pub use synthetic::{
     SYNTHETIC_OMEGA_G, SYNTHETIC_PGA_G, SYNTHETIC_SEED, SYNTHETIC_ZETA_F, SYNTHETIC_ZETA_G,
 };
 
+use crate::validate::InvalidValue;
+
 /// Why a record could not be read, parsed or built.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum RecordError {
     /// The file could not be read.
+    #[error("{}: {message}", path.display())]
     Io {
         /// The file.
         path: PathBuf,
@@ -43,12 +45,14 @@ pub enum RecordError {
         message: String,
     },
     /// The text holds no data at all.
+    #[error("{record}: empty file, no data")]
     Empty {
         /// Record name (file stem or the name passed to the parser).
         record: String,
     },
     /// A line is malformed: truncated or incomplete header, missing `NPTS` or `DT`, a bad `DT`, a
     /// value that is not a finite number, uneven time spacing...
+    #[error("{record}, line {line}: {message}")]
     Parse {
         /// Record name.
         record: String,
@@ -58,6 +62,7 @@ pub enum RecordError {
         message: String,
     },
     /// The header's `NPTS` disagrees with the number of values that follow it.
+    #[error("{record}: header says NPTS = {npts} but the file holds {values} values")]
     CountMismatch {
         /// Record name.
         record: String,
@@ -66,7 +71,13 @@ pub enum RecordError {
         /// Number of values in the file.
         values: usize,
     },
-    /// An argument (or a field of a [`Record`]) is invalid.
+    /// A number (an argument or a field of a [`Record`]) is out of its range.
+    #[error("{0}")]
+    Invalid(#[from] InvalidValue),
+    /// An argument is missing or disagrees with the data (a one-column file without a time
+    /// step, a given time step that the time column contradicts, a record that cannot be
+    /// scaled, ...).
+    #[error("{field}: {message}")]
     InvalidArgument {
         /// Argument or field name.
         field: &'static str,
@@ -74,31 +85,6 @@ pub enum RecordError {
         message: String,
     },
 }
-
-impl fmt::Display for RecordError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            RecordError::Io { path, message } => write!(f, "{}: {message}", path.display()),
-            RecordError::Empty { record } => write!(f, "{record}: empty file, no data"),
-            RecordError::Parse {
-                record,
-                line,
-                message,
-            } => write!(f, "{record}, line {line}: {message}"),
-            RecordError::CountMismatch {
-                record,
-                npts,
-                values,
-            } => write!(
-                f,
-                "{record}: header says NPTS = {npts} but the file holds {values} values"
-            ),
-            RecordError::InvalidArgument { field, message } => write!(f, "{field}: {message}"),
-        }
-    }
-}
-
-impl std::error::Error for RecordError {}
 
 fn invalid(field: &'static str, message: String) -> RecordError {
     RecordError::InvalidArgument { field, message }

@@ -2,6 +2,7 @@
 
 use super::{bad_value, invalid, parse_number, Record, RecordError};
 use crate::model::column::GRAVITY;
+use crate::validate::{finite, positive, InvalidValue};
 
 /// How to read a plain-text record (see [`parse_plain`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -42,18 +43,10 @@ impl PlainFormat {
 
     fn validate(&self) -> Result<(), RecordError> {
         if let Some(dt) = self.dt {
-            if !(dt.is_finite() && dt > 0.0) {
-                return Err(invalid(
-                    "dt",
-                    format!("must be finite and positive, got {dt}"),
-                ));
-            }
+            positive("dt", dt)?;
         }
-        if !(self.scale.is_finite() && self.scale != 0.0) {
-            return Err(invalid(
-                "scale",
-                format!("must be finite and non-zero, got {}", self.scale),
-            ));
+        if finite("scale", self.scale)? == 0.0 {
+            return Err(InvalidValue::new("scale", self.scale, "must not be zero").into());
         }
         Ok(())
     }
@@ -158,7 +151,7 @@ pub fn parse_plain(text: &str, name: &str, format: &PlainFormat) -> Result<Recor
             )
         })?
     };
-    if !(dt.is_finite() && dt > 0.0) {
+    if positive("dt", dt).is_err() {
         return Err(err(
             lines_of[n - 1],
             format!("times must increase: first {t0}, last {}", times[n - 1]),

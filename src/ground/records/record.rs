@@ -2,6 +2,7 @@
 //! peak ground acceleration and scaling.
 
 use super::{invalid, RecordError};
+use crate::validate::{all_finite, positive};
 
 /// A uniformly sampled ground-acceleration record. Sample `i` is the acceleration at `t = i·dt`.
 #[derive(Clone, Debug, PartialEq)]
@@ -28,18 +29,8 @@ impl Record {
 
     /// Checks the fields: `dt` finite and positive, every sample finite.
     pub fn validate(&self) -> Result<(), RecordError> {
-        if !(self.dt.is_finite() && self.dt > 0.0) {
-            return Err(invalid(
-                "dt",
-                format!("must be finite and positive, got {}", self.dt),
-            ));
-        }
-        if let Some(i) = self.samples.iter().position(|a| !a.is_finite()) {
-            return Err(invalid(
-                "samples",
-                format!("sample {i} is {}, not a finite number", self.samples[i]),
-            ));
-        }
+        positive("dt", self.dt)?;
+        all_finite("samples", &self.samples)?;
         Ok(())
     }
 
@@ -120,12 +111,7 @@ impl Record {
     /// content unchanged, as the overturning acceleration spectra of SPEC §7 scale records).
     /// Errors: `target` not finite and positive, or a record whose PGA is zero.
     pub fn scaled_to_pga(&self, target: f64) -> Result<Record, RecordError> {
-        if !(target.is_finite() && target > 0.0) {
-            return Err(invalid(
-                "target",
-                format!("target PGA must be finite and positive, got {target}"),
-            ));
-        }
+        positive("target", target)?;
         let pga = self.pga();
         if !(pga > 0.0 && pga.is_finite()) {
             return Err(invalid(

@@ -5,6 +5,7 @@
 use super::parse_at2;
 use super::{invalid, write_at2, Record, RecordError};
 use crate::model::column::GRAVITY;
+use crate::validate::positive;
 
 /// 64-bit linear congruential generator (Knuth's MMIX constants).
 struct Lcg(u64);
@@ -94,14 +95,9 @@ pub fn synthetic_record(
     dt: f64,
     pga: f64,
 ) -> Result<Record, RecordError> {
-    for (field, value) in [("duration", duration), ("dt", dt), ("pga", pga)] {
-        if !(value.is_finite() && value > 0.0) {
-            return Err(invalid(
-                field,
-                format!("must be finite and positive, got {value}"),
-            ));
-        }
-    }
+    positive("duration", duration)?;
+    positive("dt", dt)?;
+    positive("pga", pga)?;
     let steps = (duration / dt).round();
     if !(1.0..=1e8).contains(&steps) {
         return Err(invalid(

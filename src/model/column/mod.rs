@@ -15,14 +15,14 @@
 //! Here: the blocks and the validated column; [`Pose`] (`pose.rs`) the current geometry;
 //! `mass_matrix.rs` `M`, `q` and the velocity terms; `reduction.rs` the FE route of Appendix C.
 
-use std::fmt;
-
 mod mass_matrix;
 mod pose;
 mod reduction;
 
 pub use pose::Pose;
 pub use reduction::{reduce, three_mass_points, transformation_matrix};
+
+use crate::validate::{positive, InvalidValue};
 
 /// Standard acceleration of gravity used by the thesis (m/s²).
 pub const GRAVITY: f64 = 9.81;
@@ -59,38 +59,21 @@ impl Block {
 }
 
 /// Why a column could not be built.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum ColumnError {
     /// A column needs at least one block.
+    #[error("a column needs at least one block")]
     Empty,
-    /// A block's field is not a finite positive number (or, for the contact, wider than a block).
+    /// A block's field (`width`, `height`, `mass`, `inertia`, `contact_width`) is not a finite
+    /// number greater than zero, or the contact is wider than the blocks it joins.
+    #[error("block {block}: {invalid}")]
     InvalidBlock {
         /// 0-based block index, bottom = 0.
         block: usize,
-        /// Field name (`width`, `height`, `mass`, `inertia`, `contact_width`).
-        field: &'static str,
-        /// The offending value.
-        value: f64,
-        /// What is wrong with it.
-        reason: &'static str,
+        /// The field, its value and the rule it breaks.
+        invalid: InvalidValue,
     },
 }
-
-impl fmt::Display for ColumnError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            ColumnError::Empty => write!(f, "a column needs at least one block"),
-            ColumnError::InvalidBlock {
-                block,
-                field,
-                value,
-                reason,
-            } => write!(f, "block {block}: {field} = {value}: {reason}"),
-        }
-    }
-}
-
-impl std::error::Error for ColumnError {}
 
 /// A validated column of rigid blocks with its reference (straight) geometry.
 #[derive(Clone, Debug, PartialEq)]
@@ -110,44 +93,32 @@ impl Column {
         if blocks.is_empty() {
             return Err(ColumnError::Empty);
         }
-        let positive = |block: usize, field: &'static str, value: f64| {
-            if value.is_finite() && value > 0.0 {
-                Ok(())
-            } else {
-                Err(ColumnError::InvalidBlock {
-                    block,
-                    field,
-                    value,
-                    reason: "must be a finite number greater than zero",
-                })
-            }
-        };
+        let at = |block: usize| move |invalid| ColumnError::InvalidBlock { block, invalid };
         let mut half_contact = Vec::with_capacity(blocks.len());
         let mut base_height = Vec::with_capacity(blocks.len());
         let mut inertia = Vec::with_capacity(blocks.len());
         let mut y = 0.0;
         for (k, b) in blocks.iter().enumerate() {
-            positive(k, "width", b.width)?;
-            positive(k, "height", b.height)?;
-            positive(k, "mass", b.mass)?;
+            positive("width", b.width).map_err(at(k))?;
+            positive("height", b.height).map_err(at(k))?;
+            positive("mass", b.mass).map_err(at(k))?;
             let i = b
                 .inertia
                 .unwrap_or(b.mass * (b.width * b.width + b.height * b.height) / 12.0);
-            positive(k, "inertia", i)?;
+            positive("inertia", i).map_err(at(k))?;
             let widest = if k == 0 {
                 b.width
             } else {
                 b.width.min(blocks[k - 1].width)
             };
             let contact = b.contact_width.unwrap_or(widest);
-            positive(k, "contact_width", contact)?;
+            positive("contact_width", contact).map_err(at(k))?;
             if contact > widest * (1.0 + 1e-12) {
-                return Err(ColumnError::InvalidBlock {
-                    block: k,
-                    field: "contact_width",
-                    value: contact,
-                    reason: "is wider than the blocks it joins",
-                });
+                return Err(at(k)(InvalidValue::new(
+                    "contact_width",
+                    contact,
+                    "must not be wider than the blocks it joins",
+                )));
             }
             half_contact.push(0.5 * contact);
             base_height.push(y);
