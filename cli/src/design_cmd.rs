@@ -3,7 +3,7 @@
 
 use std::process::ExitCode;
 
-use rocking::design::{self, Branch, ImpulseFactor, MassDistribution, Pier};
+use rocking::design::{self, Branch, EquivalentBlock, ImpulseFactor, MassDistribution};
 use rocking::model::column::GRAVITY;
 use serde_json::json;
 
@@ -71,7 +71,7 @@ fn design(args: &[String]) -> Result<(), String> {
             Ok(())
         }
         Some("check") => {
-            let pier = Pier::new(a.f64_req("width")?, a.f64_req("height")?, mass(&a)?)
+            let pier = EquivalentBlock::new(a.f64_req("width")?, a.f64_req("height")?, mass(&a)?)
                 .map_err(|e| e.to_string())?;
             let (pga, t1) = (a.f64_req("pga")?, a.f64_req("t1")?);
             let factor = if a.flag("exact-icr") {

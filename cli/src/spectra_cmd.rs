@@ -10,6 +10,7 @@ use std::time::Instant;
 use indicatif::{ProgressBar, ProgressStyle};
 use rocking::driver::{EventLocator, Integrator};
 use rocking::ground::records::{read_record, PlainFormat, Record};
+use rocking::model::single_block::EquivalentBlock;
 use rocking::spectra::{
     self, column_of_size, linear_levels, log_sizes, Oas, OasLevel, OasOptions, PulseShape,
     SizeSearch, SweepOptions,
@@ -155,7 +156,9 @@ fn oc(args: &[String]) -> Result<(), String> {
     .map_err(|e| e.to_string())?;
     let mut sweep = SweepOptions::default();
     sweep_common(&a, &mut sweep)?;
-    let mono = spectra::Monolith::of(&column, sweep.simulation.gravity);
+    let block = EquivalentBlock::of_column(&column);
+    let g = sweep.simulation.gravity;
+    let (mono_p, mono_a_p_min) = (block.frequency_parameter(g), block.a_p_min(g));
     let ptp = log_sizes(
         a.f64_or("ptp-max", 10.0)?,
         a.f64_or("ptp-min", 0.1)?,
@@ -167,14 +170,14 @@ fn oc(args: &[String]) -> Result<(), String> {
         .rev()
         .enumerate()
         .filter(|(k, _)| k % sn == si)
-        .map(|(_, x)| x / mono.p)
+        .map(|(_, x)| x / mono_p)
         .collect();
     let levels = linear_levels(
         1.0,
         a.f64_or("level-max", 10.0)?,
         a.usize_or("level-n", 40)?,
     );
-    let a_p: Vec<f64> = levels.iter().map(|l| l * mono.a_p_min).collect();
+    let a_p: Vec<f64> = levels.iter().map(|l| l * mono_a_p_min).collect();
     let pb = progress_bar(t_p.len() as u64);
     let tick = || pb.inc(1);
     let res = spectra::overturning_curve(&column, shape, &t_p, &a_p, &sweep, Some(&tick))
@@ -195,7 +198,7 @@ fn oc(args: &[String]) -> Result<(), String> {
             .map(|(x, e)| json!({"p_tp": x, "level": e}))
             .collect();
         let out = json!({
-            "shape": shape.name(), "blocks": n_blocks, "p": mono.p, "a_p_min": mono.a_p_min,
+            "shape": shape.name(), "blocks": n_blocks, "p": mono_p, "a_p_min": mono_a_p_min,
             "points": pts, "envelope": env,
         });
         println!(
@@ -209,8 +212,8 @@ fn oc(args: &[String]) -> Result<(), String> {
                 println!(
                     "{},{n_blocks},{t},{ap},{},{},{}",
                     shape.name(),
-                    mono.p * t,
-                    ap / mono.a_p_min,
+                    mono_p * t,
+                    ap / mono_a_p_min,
                     u8::from(res.is_unsafe(i, j))
                 );
             }
@@ -264,8 +267,8 @@ fn oas_json(o: &Oas, seconds: f64) -> Value {
         .iter()
         .map(|l| {
             let pt = l.largest_unsafe.map(|i| {
-                let m = o.monolith(o.sizes[i]);
-                (o.sizes[i], m.p, m.p * l.level)
+                let p = o.block(o.sizes[i]).frequency_parameter(o.gravity);
+                (o.sizes[i], p, p * l.level)
             });
             json!({
                 "level": l.level, "largest_unsafe": l.largest_unsafe,
@@ -398,7 +401,12 @@ fn oas(args: &[String]) -> Result<(), String> {
         println!("record,level,size,p,f,simulations");
         for l in &result.levels {
             let (size, p) = match l.largest_unsafe {
-                Some(i) => (result.sizes[i], result.monolith(result.sizes[i]).p),
+                Some(i) => (
+                    result.sizes[i],
+                    result
+                        .block(result.sizes[i])
+                        .frequency_parameter(result.gravity),
+                ),
                 None => (f64::NAN, f64::NAN),
             };
             println!(

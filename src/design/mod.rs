@@ -7,13 +7,15 @@
 //! (Eq. 31): a block is safe if `a_p ≤ a_p,min i_cr / (t_1 p)` or `a_p ≤ a_p,min`, with
 //! `i_cr ≈ 1` in Eq. 31 and in the pier example (Eq. 23).
 //!
-//! The block is described by its full width `B`, height `H` and its mass distribution
+//! The pier is an [`EquivalentBlock`]: its full width `B`, height `H` and its mass distribution
 //! ([`MassDistribution`], thesis 5.3.3): the centre of mass sits at height `h_c` on the axis,
 //! `tan δ = (B/2) / h_c`, `R = √((B/2)² + h_c²)` is the distance from a bottom corner to the
 //! centre of mass, and `θ = α m R²` the moment of inertia about the corner (Eq. 22). For a
 //! uniform block `h_c = H/2`, so `tan δ = B/H` and `R = ½√(B² + H²)` as in Eq. 3 and Fig. 7.
 
-use crate::model::single_block::{self, ALPHA_POINT_MASS, ALPHA_UNIFORM};
+pub use crate::model::single_block::{EquivalentBlock, MassDistribution};
+
+use crate::model::single_block;
 use crate::validate::{positive, InvalidValue};
 
 /// Why a design computation was refused.
@@ -33,123 +35,6 @@ pub enum DesignError {
         /// What went wrong.
         detail: String,
     },
-}
-
-/// Mass distribution of a symmetric pier (thesis 5.3.3, Eq. 22, Fig. 51; the two cases of the
-/// pier example, Eq. 23).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum MassDistribution {
-    /// Case "a" of the pier example: a solid pier of uniform mass. Centre of mass at mid-height
-    /// (`h_c = H/2`), `α = 4/3` (Eq. 13), `tan δ = B/H`, `R = ½√(B² + H²)`.
-    Uniform,
-    /// Case "b" of the pier example: the mass is concentrated at the top of the pier and the
-    /// weight of the pier is neglected. A point mass at `h_c = H`, `α = 1` (`θ = m R²`),
-    /// `tan δ = B/(2H)`, `R = √((B/2)² + H²)`.
-    Top,
-    /// Any other symmetric distribution (Fig. 51): `α` of Eq. 22 and the height of the centre of
-    /// mass as a fraction of the pier height. Both are needed: `α` alone fixes `p` only once `R`
-    /// (hence the centre of mass) is known, and `δ` also depends on the centre of mass.
-    /// `α` is taken as a constant, independent of the width (exact for the two cases above).
-    General {
-        /// `θ = α m R²` about a bottom corner.
-        alpha: f64,
-        /// Height of the centre of mass divided by the pier height `H`.
-        centre_height_ratio: f64,
-    },
-}
-
-impl MassDistribution {
-    /// `α` of Eq. 22.
-    pub fn alpha(self) -> f64 {
-        match self {
-            MassDistribution::Uniform => ALPHA_UNIFORM,
-            MassDistribution::Top => ALPHA_POINT_MASS,
-            MassDistribution::General { alpha, .. } => alpha,
-        }
-    }
-
-    /// Height of the centre of mass over the pier height.
-    pub fn centre_height_ratio(self) -> f64 {
-        match self {
-            MassDistribution::Uniform => 0.5,
-            MassDistribution::Top => 1.0,
-            MassDistribution::General {
-                centre_height_ratio,
-                ..
-            } => centre_height_ratio,
-        }
-    }
-
-    fn validate(self) -> Result<(), InvalidValue> {
-        positive("alpha", self.alpha())?;
-        positive("centre_height_ratio", self.centre_height_ratio())?;
-        Ok(())
-    }
-}
-
-/// A symmetric pier (a single rigid block) for the design check.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Pier {
-    /// Full width `B` \[m\].
-    pub width: f64,
-    /// Full height `H` \[m\].
-    pub height: f64,
-    /// Mass distribution (fixes `α` and the centre of mass).
-    pub mass: MassDistribution,
-}
-
-impl Pier {
-    /// A validated pier: width, height, `α` and centre height must be finite and positive.
-    pub fn new(width: f64, height: f64, mass: MassDistribution) -> Result<Pier, DesignError> {
-        positive("width", width)?;
-        positive("height", height)?;
-        mass.validate()?;
-        Ok(Pier {
-            width,
-            height,
-            mass,
-        })
-    }
-
-    /// Height of the centre of mass `h_c` \[m\].
-    pub fn centre_height(&self) -> f64 {
-        self.mass.centre_height_ratio() * self.height
-    }
-
-    /// `tan δ = (B/2) / h_c` (`B/H` for a uniform pier, Fig. 7).
-    pub fn tan_delta(&self) -> f64 {
-        0.5 * self.width / self.centre_height()
-    }
-
-    /// Slenderness angle `δ` \[rad\].
-    pub fn slenderness_angle(&self) -> f64 {
-        self.tan_delta().atan()
-    }
-
-    /// Distance `R` from a bottom corner to the centre of mass \[m\].
-    pub fn corner_distance(&self) -> f64 {
-        (0.5 * self.width).hypot(self.centre_height())
-    }
-
-    /// `α` of Eq. 22.
-    pub fn alpha(&self) -> f64 {
-        self.mass.alpha()
-    }
-
-    /// Frequency parameter `p = √(g / (α R))` (Eq. 13, 22).
-    pub fn frequency_parameter(&self, g: f64) -> f64 {
-        single_block::frequency_parameter(self.corner_distance(), self.alpha(), g)
-    }
-
-    /// `a_p,min = g tan δ` (Eq. 3).
-    pub fn a_p_min(&self, g: f64) -> f64 {
-        g * self.tan_delta()
-    }
-
-    /// `i_cr = √(2 / (1 + cos δ))` (Eq. 18), `cos δ = h_c / R`.
-    pub fn normalised_critical_impulse(&self) -> f64 {
-        (2.0 / (1.0 + self.centre_height() / self.corner_distance())).sqrt()
-    }
 }
 
 /// Which factor multiplies `1 / (t_1 p)` in the simplified OAS.
@@ -197,13 +82,13 @@ pub struct DesignCheck {
 /// [`ImpulseFactor::Exact`], the left form of Eq. 21):
 /// safe if `a_p ≤ a_p,min i_cr / (t_1 p)` or `a_p ≤ a_p,min`, with `1/p = √(α R / g)`.
 pub fn design_check(
-    pier: &Pier,
+    pier: &EquivalentBlock,
     a_p: f64,
     t1: f64,
     g: f64,
     factor: ImpulseFactor,
 ) -> Result<DesignCheck, DesignError> {
-    let pier = Pier::new(pier.width, pier.height, pier.mass)?;
+    pier.validate()?;
     positive("a_p", a_p)?;
     positive("t1", t1)?;
     positive("g", g)?;
@@ -368,7 +253,7 @@ fn solve_width(
     factor: ImpulseFactor,
 ) -> Result<f64, DesignError> {
     let residual = |width: f64| {
-        let pier = Pier {
+        let pier = EquivalentBlock {
             width,
             height,
             mass,
@@ -511,7 +396,7 @@ mod tests {
         for mass in [MassDistribution::Uniform, MassDistribution::Top] {
             let w = pier_example(mass, G).eq23;
             let at = |width: f64| {
-                let pier = Pier::new(width, 12.0, mass).unwrap();
+                let pier = EquivalentBlock::new(width, 12.0, mass).unwrap();
                 design_check(&pier, a_g, 0.7, G, ImpulseFactor::One).unwrap()
             };
             let c = at(w);
@@ -522,7 +407,7 @@ mod tests {
             assert!((c.limit - c.a_p_min / (0.7 * c.p)).abs() < 1e-12);
         }
         // A long impulse (t_1 p > 1): only "does not rock" can make the pier safe.
-        let pier = Pier::new(2.0, 12.0, MassDistribution::Uniform).unwrap();
+        let pier = EquivalentBlock::new(2.0, 12.0, MassDistribution::Uniform).unwrap();
         let c = design_check(&pier, 0.1 * G, 5.0, G, ImpulseFactor::Exact).unwrap();
         assert_eq!(c.governing, Branch::NoRocking);
         assert!(c.safe);
@@ -566,9 +451,9 @@ mod tests {
         };
         let e = pier_width(12.0, 1.0, 0.7, bad, G).unwrap_err();
         assert!(e.to_string().starts_with("alpha = "), "{e}");
-        let e = Pier::new(1.0, f64::INFINITY, MassDistribution::Uniform).unwrap_err();
+        let e = EquivalentBlock::new(1.0, f64::INFINITY, MassDistribution::Uniform).unwrap_err();
         assert!(e.to_string().starts_with("height = "), "{e}");
-        let pier = Pier {
+        let pier = EquivalentBlock {
             width: 0.0,
             height: 12.0,
             mass: MassDistribution::Uniform,
@@ -581,7 +466,7 @@ mod tests {
     fn extreme_but_valid_inputs_are_solved() {
         for (h, a, t) in [(1e-3, 1e3, 10.0), (1e4, 1e-6, 1e-3), (0.5, 50.0, 100.0)] {
             let w = pier_width(h, a, t, MassDistribution::Uniform, G).unwrap();
-            let pier = Pier::new(w.eq23, h, MassDistribution::Uniform).unwrap();
+            let pier = EquivalentBlock::new(w.eq23, h, MassDistribution::Uniform).unwrap();
             let c = design_check(&pier, a, t, G, ImpulseFactor::One).unwrap();
             assert!((c.impulse_limit / a - 1.0).abs() < 1e-12, "{h} {a} {t}");
         }

@@ -8,11 +8,11 @@
 //! driver reports overturning (static tipping of the part above some interface, SPEC §5; with
 //! `continue_until_fallen`, a block rotated by `π/2`).
 //!
-//! Axes. A column is described by its *equivalent monolith* ([`Monolith`]): the bottom block's
-//! width `B`, the total height `H`, `tan δ = B/H`, `R = ½√(B² + H²)`, `p = √(g/(αR))`,
-//! `α = 4/3`, `a_p,min = g tan δ` (Eq. 3, 13). For a single uniform block these are exact; for a
-//! stack of equal-width blocks they are the axes of thesis Fig. 40/43 (the column "has the same
-//! aspect ratio" as the monolith).
+//! Axes. A column is described by its *equivalent block* ([`EquivalentBlock::of_column`]): the
+//! uniform block of the bottom block's width `B` and the total height `H`, `tan δ = B/H`,
+//! `R = ½√(B² + H²)`, `p = √(g/(αR))`, `α = 4/3`, `a_p,min = g tan δ` (Eq. 3, 13). For a single
+//! uniform block these are exact; for a stack of equal-width blocks they are the axes of thesis
+//! Fig. 40/43 (the column "has the same aspect ratio" as the monolith).
 //!
 //! Time step ([`TimeStep`]): `dt = min(record_fraction · Δt_record, pulse_fraction · t_p,
 //! block_fraction / p)`; convergence in `dt` is shown in `docs/spectra.md` and tested.
@@ -26,7 +26,7 @@ use crate::ground::excitation::{ExcitationError, Pulse};
 use crate::ground::records::{Record, RecordError};
 use crate::ground::GroundMotion;
 use crate::model::column::{Block, Column, ColumnError};
-use crate::model::single_block::{self, ALPHA_UNIFORM};
+use crate::model::single_block::{self, EquivalentBlock};
 use crate::validate::{all_positive, non_negative, positive, InvalidValue};
 
 /// Why a sweep could not run.
@@ -79,47 +79,9 @@ fn at_least_one_block(n_blocks: usize) -> Result<(), InvalidValue> {
 // ---------------------------------------------------------------------------------------------
 // Geometry.
 
-/// The equivalent monolith of a column: the axes of the OC and OAS (see the module docs).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Monolith {
-    /// Width `B` of the bottom block \[m\].
-    pub width: f64,
-    /// Total height `H` \[m\].
-    pub height: f64,
-    /// Slenderness angle `δ`, `tan δ = B/H` \[rad\].
-    pub delta: f64,
-    /// `R = ½√(B² + H²)` \[m\].
-    pub r: f64,
-    /// Frequency parameter `p = √(g/(αR))`, `α = 4/3` \[1/s\] (Eq. 13).
-    pub p: f64,
-    /// `a_p,min = g tan δ` \[m/s²\] (Eq. 3).
-    pub a_p_min: f64,
-    /// `i_cr = √(2/(1 + cos δ))` (Eq. 18).
-    pub i_cr: f64,
-}
-
-impl Monolith {
-    /// The equivalent monolith of `column` under gravity `g`.
-    pub fn of(column: &Column, g: f64) -> Monolith {
-        let width = column.blocks()[0].width;
-        let height = column.total_height();
-        let delta = single_block::slenderness_angle(width, height);
-        let r = single_block::corner_distance(width, height);
-        Monolith {
-            width,
-            height,
-            delta,
-            r,
-            p: single_block::frequency_parameter(r, ALPHA_UNIFORM, g),
-            a_p_min: single_block::a_p_min(delta, g),
-            i_cr: single_block::normalised_critical_impulse(delta),
-        }
-    }
-}
-
-/// A column of `n_blocks` equal uniform blocks whose equivalent monolith has slenderness
-/// `H/B = slenderness` and size `R = ½√(B² + H²) = size` \[m\] (unit total mass: overturning does
-/// not depend on it).
+/// A column of `n_blocks` equal uniform blocks whose equivalent block
+/// ([`EquivalentBlock::of_size`]) has slenderness `H/B = slenderness` and size
+/// `R = ½√(B² + H²) = size` \[m\] (unit total mass: overturning does not depend on it).
 pub fn column_of_size(
     size: f64,
     slenderness: f64,
@@ -128,36 +90,13 @@ pub fn column_of_size(
     positive("size", size)?;
     positive("slenderness", slenderness)?;
     at_least_one_block(n_blocks)?;
-    let width = 2.0 * size / (1.0 + slenderness * slenderness).sqrt();
-    let height = slenderness * width;
+    let block = EquivalentBlock::of_size(size, slenderness);
     let n = n_blocks as f64;
     Ok(Column::new(
         (0..n_blocks)
-            .map(|_| Block::rectangle(width, height / n, 1.0 / n))
+            .map(|_| Block::rectangle(block.width, block.height / n, 1.0 / n))
             .collect(),
     )?)
-}
-
-/// The smallest ground acceleration that lifts some part of the column off its interface,
-/// `min_k g b_k / h_k` with `h_k` the height of the centre of mass of the part above interface
-/// `k` over that interface (straight, centred blocks). Below it in absolute value, the column
-/// moves with the ground.
-pub fn uplift_acceleration(column: &Column, g: f64) -> f64 {
-    let blocks = column.blocks();
-    let n = blocks.len();
-    let mut best = f64::INFINITY;
-    for k in 0..n {
-        let base: f64 = blocks[..k].iter().map(|b| b.height).sum();
-        let mut y = base;
-        let (mut m, mut my) = (0.0, 0.0);
-        for b in &blocks[k..] {
-            m += b.mass;
-            my += b.mass * (y + 0.5 * b.height - base);
-            y += b.height;
-        }
-        best = best.min(g * column.half_contact_width(k) / (my / m));
-    }
-    best
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -409,14 +348,14 @@ pub fn pulse_overturns(
 ) -> Result<bool, SpectraError> {
     options.validate()?;
     let g = options.simulation.gravity;
-    let mono = Monolith::of(column, g);
+    let p = EquivalentBlock::of_column(column).frequency_parameter(g);
     let pulse = shape.pulse(a_p, t_p)?;
     // Never lifts off: no simulation needed (the peak of every shape is |a_p|).
-    if a_p.abs() < uplift_acceleration(column, g) * (1.0 - 1e-9) {
+    if a_p.abs() < column.static_uplift_acceleration(g) * (1.0 - 1e-9) {
         return Ok(false);
     }
-    let dt = options.time_step.dt(None, Some(t_p), mono.p);
-    let sim = options.simulation(dt, pulse.end_time() + options.tail / mono.p);
+    let dt = options.time_step.dt(None, Some(t_p), p);
+    let sim = options.simulation(dt, pulse.end_time() + options.tail / p);
     Ok(overturns(
         column,
         &crate::ground::excitation::Excitation::Pulse(pulse),
@@ -429,8 +368,10 @@ pub fn pulse_overturns(
 pub struct Oc {
     /// Pulse shape.
     pub shape: PulseShape,
-    /// Equivalent monolith of the column (normalisation).
-    pub monolith: Monolith,
+    /// Equivalent block of the column (normalisation).
+    pub block: EquivalentBlock,
+    /// Acceleration of gravity used \[m/s²\].
+    pub gravity: f64,
     /// Number of blocks.
     pub n_blocks: usize,
     /// Pulse durations `t_p` \[s\] (rows).
@@ -468,11 +409,11 @@ impl Oc {
 
     /// Normalised coordinates of every grid point: `(p t_p, a_p / a_p,min, unsafe)` (Fig. 33a).
     pub fn normalised(&self) -> Vec<(f64, f64, bool)> {
-        let m = &self.monolith;
+        let (p, a_p_min) = self.axes();
         let mut out = Vec::with_capacity(self.overturned.len());
         for (i, &t) in self.t_p.iter().enumerate() {
             for (j, &a) in self.a_p.iter().enumerate() {
-                out.push((m.p * t, a / m.a_p_min, self.is_unsafe(i, j)));
+                out.push((p * t, a / a_p_min, self.is_unsafe(i, j)));
             }
         }
         out
@@ -480,12 +421,20 @@ impl Oc {
 
     /// The envelope in normalised coordinates `(p t_p, a_p / a_p,min)`.
     pub fn normalised_envelope(&self) -> Vec<(f64, Option<f64>)> {
-        let m = &self.monolith;
+        let (p, a_p_min) = self.axes();
         self.t_p
             .iter()
             .zip(self.envelope())
-            .map(|(&t, e)| (m.p * t, e.map(|a| a / m.a_p_min)))
+            .map(|(&t, e)| (p * t, e.map(|a| a / a_p_min)))
             .collect()
+    }
+
+    /// `p` and `a_p,min` of the equivalent block.
+    fn axes(&self) -> (f64, f64) {
+        (
+            self.block.frequency_parameter(self.gravity),
+            self.block.a_p_min(self.gravity),
+        )
     }
 }
 
@@ -517,7 +466,8 @@ pub fn overturning_curve(
     }
     Ok(Oc {
         shape,
-        monolith: Monolith::of(column, options.simulation.gravity),
+        block: EquivalentBlock::of_column(column),
+        gravity: options.simulation.gravity,
         n_blocks: column.n_interfaces(),
         t_p: t_p.to_vec(),
         a_p: a_p.to_vec(),
@@ -570,7 +520,7 @@ pub enum SizeSearch {
 /// Options of an OAS. [`OasOptions::default`] is the thesis's grid.
 #[derive(Clone, Debug, PartialEq)]
 pub struct OasOptions {
-    /// `H/B` of the equivalent monolith (thesis: 12).
+    /// `H/B` of the equivalent block (thesis: 12).
     pub slenderness: f64,
     /// Levels `a_p / a_p,min` (thesis: 80 from 1 to 10).
     pub levels: Vec<f64>,
@@ -653,9 +603,11 @@ impl<'a> PreparedRecord<'a> {
         let record = self.record;
         let column = column_of_size(size, options.slenderness, options.n_blocks)?;
         let g = options.sweep.simulation.gravity;
-        let mono = Monolith::of(&column, g);
-        let factor = level * mono.a_p_min / self.pga;
-        let Some((t0, t_last)) = exceedance_window(record, factor, uplift_acceleration(&column, g))
+        let block = EquivalentBlock::of_column(&column);
+        let factor = level * block.a_p_min(g) / self.pga;
+        let p = block.frequency_parameter(g);
+        let Some((t0, t_last)) =
+            exceedance_window(record, factor, column.static_uplift_acceleration(g))
         else {
             return Ok(false);
         };
@@ -665,13 +617,13 @@ impl<'a> PreparedRecord<'a> {
             t0,
             impulses: &self.impulses,
         };
-        let dt = options.sweep.time_step.dt(Some(record.dt), None, mono.p);
+        let dt = options.sweep.time_step.dt(Some(record.dt), None, p);
         let end = if options.sweep.cut_after_last_exceedance {
             t_last - t0
         } else {
             motion.end_time()
         };
-        let tail = options.sweep.tail / mono.p;
+        let tail = options.sweep.tail / p;
         let mut sim = options.sweep.simulation(dt, end + tail);
         // After the last exceedance a closed column can never lift off again: stop there
         // (exact).
@@ -773,21 +725,9 @@ impl ConservativeCheck {
 }
 
 impl Oas {
-    /// The equivalent monolith of size `size`.
-    pub fn monolith(&self, size: f64) -> Monolith {
-        let width = 2.0 * size / (1.0 + self.slenderness * self.slenderness).sqrt();
-        let height = self.slenderness * width;
-        let delta = single_block::slenderness_angle(width, height);
-        let r = single_block::corner_distance(width, height);
-        Monolith {
-            width,
-            height,
-            delta,
-            r,
-            p: single_block::frequency_parameter(r, ALPHA_UNIFORM, self.gravity),
-            a_p_min: single_block::a_p_min(delta, self.gravity),
-            i_cr: single_block::normalised_critical_impulse(delta),
-        }
+    /// The equivalent block of size `size` (its `p` and `a_p,min` under [`Oas::gravity`]).
+    pub fn block(&self, size: f64) -> EquivalentBlock {
+        EquivalentBlock::of_size(size, self.slenderness)
     }
 
     /// `i_cr` of the slenderness (Eq. 18).
@@ -803,7 +743,7 @@ impl Oas {
             .filter_map(|l| {
                 let i = l.largest_unsafe?;
                 let size = self.sizes[i];
-                let p = self.monolith(size).p;
+                let p = self.block(size).frequency_parameter(self.gravity);
                 Some(OasPoint {
                     level: l.level,
                     size,

@@ -181,17 +181,24 @@ impl Column {
     }
 
     /// Horizontal ground acceleration at which a straight column starts to rock (static):
-    /// the smallest `a_g` that tips the part above some interface about one of its corners.
-    /// For a single uniform block this is `g tan δ` (thesis Eq. 3).
+    /// the smallest `a_g` that tips the part above some interface about one of its corners,
+    /// `min_k g b_k / h_k` with `h_k` the height of the centre of mass of the part above interface
+    /// `k` over that interface. Below it in absolute value, the column moves with the ground. For a
+    /// single uniform block this is `a_p,min = g tan δ` (thesis Eq. 3).
     pub fn static_uplift_acceleration(&self, gravity: f64) -> f64 {
-        let pose = self.pose(&vec![0.0; self.n_dofs()]);
-        (0..self.n_interfaces())
-            .map(|k| {
-                let c = self.centre_of_mass_above(&pose, k);
-                let lever = c[1] - self.base_height[k];
-                gravity * self.half_contact[k] / lever
-            })
-            .fold(f64::INFINITY, f64::min)
+        let mut least = f64::INFINITY;
+        for k in 0..self.n_interfaces() {
+            let base = self.base_height[k];
+            let (mut mass, mut moment) = (0.0, 0.0);
+            let mut y = base;
+            for b in &self.blocks[k..] {
+                mass += b.mass;
+                moment += b.mass * (y + 0.5 * b.height - base);
+                y += b.height;
+            }
+            least = least.min(gravity * self.half_contact[k] / (moment / mass));
+        }
+        least
     }
 }
 
