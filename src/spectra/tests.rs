@@ -1,5 +1,6 @@
 use super::*;
 use crate::ground::records::{bundled_record, Record};
+use crate::model::single_block::EquivalentBlock;
 
 /// A small OAS grid for tests: 16 levels from 1 to 10, 40 sizes from 1000 m to 0.1 m.
 fn small_grid() -> OasOptions {

@@ -63,7 +63,9 @@ pub enum Pulse {
     ///
     /// The normalisation `max |a|` has no closed form; it is found by dense sampling and a
     /// golden-section refinement (relative accuracy ~1e-12) and cached per thread for the last
-    /// `(γ, ν)`, so [`Excitation::acceleration`](super::Excitation::acceleration) stays O(1) in a time-stepping loop.
+    /// `(γ, ν)`, so [`Excitation::acceleration`] stays O(1) in a time-stepping loop.
+    ///
+    /// [`Excitation::acceleration`]: super::Excitation::acceleration
     MavroeidisPapageorgiou {
         /// Peak `|acceleration|` \[m/s²\] (the sign flips the pulse).
         amplitude: f64,
