@@ -3,10 +3,7 @@ use std::f64::consts::PI;
 use super::mavroeidis_papageorgiou::{mp_peak, mp_peak_cached};
 use super::pulse::RICKER_HALF_WIDTH;
 use super::*;
-
-fn close(a: f64, b: f64, tol: f64) -> bool {
-    (a - b).abs() <= tol
-}
+use crate::test_support::close;
 
 /// Max |a| over a dense grid of the support.
 fn sampled_peak(e: &Excitation, n: usize) -> f64 {

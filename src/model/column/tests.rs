@@ -1,87 +1,45 @@
 use super::*;
-
-fn two_granite() -> Column {
-    Column::new(vec![
-        Block::rectangle(0.1, 0.3, 15.0),
-        Block::rectangle(0.1, 0.3, 15.0),
-    ])
-    .unwrap()
-}
+use crate::samples;
+use crate::test_support::assert_printed;
 
 /// Thesis Eq. 10: the 4×4 mass matrix of two 0.1 × 0.3 m, 15 kg blocks.
 #[test]
 fn thesis_eq10_mass_matrix() {
-    let col = two_granite();
+    let col = samples::two_granite_column();
     let m = col.mass_matrix(&col.pose(&[0.0; 4]));
-    let expected = [
-        [3.700, 1.175, 3.550, 1.100],
-        [1.175, 0.500, 1.100, 0.425],
-        [3.550, 1.100, 3.700, 1.175],
-        [1.100, 0.425, 1.175, 0.500],
-    ];
-    for r in 0..4 {
-        for c in 0..4 {
-            assert!(
-                (m[r * 4 + c] - expected[r][c]).abs() < 5e-4,
-                "M[{r}][{c}] = {}",
-                m[r * 4 + c]
-            );
+    for (r, row) in samples::EQ_10_MASS_MATRIX.iter().enumerate() {
+        for (c, &printed) in row.iter().enumerate() {
+            assert_printed(m[r * 4 + c], printed);
         }
     }
 }
 
-fn appendix_c_column() -> Column {
-    Column::new(vec![
-        Block::rectangle(1.0, 4.0, 1.0),
-        Block::rectangle(1.0, 4.0, 1.0),
-    ])
-    .unwrap()
-}
-
-/// Round to the printed digits and compare (`printed` has `decimals` decimals).
-fn printed(value: f64, printed: f64, decimals: i32) {
-    let scale = 10f64.powi(decimals);
-    assert_eq!(
-        (value * scale).round() / scale,
-        printed,
-        "{value} does not print as {printed}"
-    );
-}
-
-/// Appendix C, straight: `M̃` Eq. C13 and `p̃` Eq. C12 (rotations about the right corners).
+/// Appendix C, straight (`M̃` Eq. C13, `p̃` Eq. C12, rotations about the right corners) and the
+/// upper block inclined by 10° about its right corner (Eq. C16, C15).
 #[test]
-fn appendix_c_straight() {
-    let col = appendix_c_column();
-    let pose = col.pose(&[0.0; 4]);
-    let m = col.mass_matrix(&pose);
-    let q = col.load_vector(&pose, -1.0, GRAVITY);
-    printed(m[0], 43.333, 3);
-    printed(m[1], 13.667, 3);
-    printed(m[4 + 1], 5.667, 3);
-    printed(q[0], 1.810, 3);
-    printed(q[1], 2.905, 3);
-}
-
-/// Appendix C, upper block inclined by 10° about its right corner: Eq. C15 and C16.
-#[test]
-fn appendix_c_inclined() {
-    let col = appendix_c_column();
-    let phi = [0.0, -10f64.to_radians(), 0.0, 0.0];
-    let pose = col.pose(&phi);
-    let m = col.mass_matrix(&pose);
-    let q = col.load_vector(&pose, -1.0, GRAVITY);
-    printed(m[0], 43.785, 3);
-    printed(m[1], 13.892, 3);
-    printed(m[4 + 1], 5.667, 3);
-    printed(q[0], -1.728, 3);
-    printed(q[1], -0.633, 3);
+fn appendix_c_printed_values() {
+    for case in [
+        samples::appendix_c_straight(),
+        samples::appendix_c_inclined(),
+    ] {
+        let col = &case.column;
+        let pose = col.pose(&case.phi);
+        let m = col.mass_matrix(&pose);
+        let q = col.load_vector(&pose, case.ground_acc, GRAVITY);
+        for &(r, c, printed) in &case.mass {
+            assert_printed(m[r * 4 + c], printed);
+        }
+        for &(r, printed) in &case.load {
+            assert_printed(q[r], printed);
+        }
+    }
 }
 
 /// The FE route gives the same numbers: three mass points per block, `B` from the geometry,
 /// `BᵀMB`, `Bᵀp` (thesis Eq. C9–C16).
 #[test]
 fn appendix_c_reduction_matches_direct_route() {
-    let col = appendix_c_column();
+    let col = samples::appendix_c_straight().column;
     for phi in [
         [0.0, 0.0, 0.0, 0.0],
         [0.0, -10f64.to_radians(), 0.0, 0.0],

@@ -1,34 +1,17 @@
 use super::*;
-
-/// Round to `decimals` places (half away from zero), for comparisons with printed values.
-fn round_to(x: f64, decimals: i32) -> f64 {
-    let s = 10f64.powi(decimals);
-    (x * s).round() / s
-}
+use crate::samples::{NORMALISED_CRITICAL_IMPULSE, PRIETO_CUT_CORNERS, TABLE_1_HOUSNER};
+use crate::test_support::{assert_printed, round_to};
 
 /// Housner energy loss in percent from the printed full dimensions `2h`, `2b`.
 fn eta_percent(two_h: f64, two_b: f64) -> f64 {
     100.0 * energy_loss(housner_mu(two_h / 2.0, two_b / 2.0))
 }
 
+/// Thesis Table 1, Eq. 1 and 2: the Housner rows.
 #[test]
 fn table_1_housner_rows() {
-    // (2h, 2b, printed η_Hous in %), thesis Table 1, Eq. 1 and 2.
-    let rows = [
-        (200.0, 100.0, 51.0),
-        (400.0, 100.0, 16.9),
-        (771.5, 152.0, 10.9),
-        (950.0, 190.0, 11.2),
-        (1000.0, 250.0, 16.9),
-        (1000.0, 170.0, 8.2),
-        (1000.0, 120.0, 4.2),
-    ];
-    for (two_h, two_b, printed) in rows {
-        assert_eq!(
-            round_to(eta_percent(two_h, two_b), 1),
-            printed,
-            "{two_h} x {two_b}"
-        );
+    for row in TABLE_1_HOUSNER {
+        assert_printed(eta_percent(row.two_h, row.two_b), row.loss_percent);
     }
 }
 
@@ -38,8 +21,10 @@ fn table_1_housner_rows() {
 /// is the tie and that the printed number is its half-up rounding.
 #[test]
 fn table_1_h_over_b_3_is_an_exact_tie() {
-    let eta = eta_percent(300.0, 100.0);
-    assert_eq!(round_to(eta, 1), 27.8);
+    let row = TABLE_1_HOUSNER[1];
+    assert_eq!((row.two_h, row.two_b), (300.0, 100.0));
+    let eta = eta_percent(row.two_h, row.two_b);
+    assert_eq!(round_to(eta, 1), row.loss_percent.value);
     assert!((eta - 27.75).abs() <= 8.0 * f64::EPSILON * 27.75, "{eta}");
     assert_eq!(round_to(27.75, 1), 27.8);
     assert_eq!(housner_mu(3.0, 1.0), 0.85);
@@ -48,9 +33,11 @@ fn table_1_h_over_b_3_is_an_exact_tie() {
 #[test]
 fn table_1_prieto_cut_corners_eq_a3() {
     // 2h = 500, 2b = 246, 2b₂ = 160: η = 25.2 %.
-    let mu = mu_pivots(250.0, 123.0, -80.0, 80.0);
-    assert_eq!(mu, mu_cut_corners(250.0, 123.0, 80.0));
-    assert_eq!(round_to(100.0 * energy_loss(mu), 1), 25.2);
+    let block = PRIETO_CUT_CORNERS;
+    let (h, b, b2) = (block.two_h / 2.0, block.two_b / 2.0, block.two_b2 / 2.0);
+    let mu = mu_pivots(h, b, -b2, b2);
+    assert_eq!(mu, mu_cut_corners(h, b, b2));
+    assert_printed(100.0 * energy_loss(mu), block.loss_percent);
 }
 
 #[test]
@@ -111,9 +98,11 @@ fn stocky_block_lands_flat() {
 #[test]
 fn normalised_critical_impulse_printed_values() {
     // Thesis after Eq. 18: H/B = 3 → 1.013, H/B = 8 → 1.002.
-    for (h_over_b, printed) in [(3.0, 1.013), (8.0, 1.002)] {
+    for (h_over_b, printed) in NORMALISED_CRITICAL_IMPULSE {
         let delta = slenderness_angle(1.0, h_over_b);
-        assert_eq!(round_to(normalised_critical_impulse(delta), 3), printed);
+        assert_printed(normalised_critical_impulse(delta), printed);
+        let block = EquivalentBlock::uniform(1.0, h_over_b);
+        assert_printed(block.normalised_critical_impulse(), printed);
     }
 }
 
