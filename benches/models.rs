@@ -1,12 +1,13 @@
 //! Impact and opening time against the number of closed interfaces: enumeration 1–12,
-//! projection 1–200, and a 40- and 100-block impact through the C ABI.
+//! projection 1–200, a 40- and 100-block impact through the C ABI, and the thesis's two-block
+//! cases of `rocking::samples` (SPEC §8), checked against their printed answers before timing.
 //!
 //! `cargo bench --bench models` (numbers go into docs/performance.md).
 
 use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criterion};
 use rocking::ffi::{rocking_impact_model, RockingOptions};
 use rocking::model::column::{Column, GRAVITY};
-use rocking::{impact_model, opening_model, ModelOptions, Solver, Status};
+use rocking::{impact_model, opening_model, samples, ModelOptions, Solver, Status};
 use std::time::Duration;
 
 /// A column of `n` slender blocks (0.4 × 1.2 m) whose top interface closes at 1 rad/s about
@@ -135,5 +136,63 @@ fn c_abi(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, impacts, openings, c_abi);
+/// The impact of thesis Fig. 22 (one and two consecutive impacts) and the opening of
+/// Fig. 18–19, each solver.
+fn thesis_cases(c: &mut Criterion) {
+    let mut g = c.benchmark_group("thesis");
+    g.warm_up_time(Duration::from_millis(300))
+        .measurement_time(Duration::from_secs(1))
+        .sample_size(10);
+    let impact = samples::two_block_impact();
+    let opening = samples::two_block_top_push();
+    for solver in [Solver::Enumerate, Solver::Projection] {
+        for answer in &impact.answers {
+            let opts = ModelOptions {
+                solver,
+                n_impacts: answer.n_impacts,
+                ..ModelOptions::default()
+            };
+            let run = || {
+                let mut s = impact.statuses.clone();
+                let mut v = impact.velocity.clone();
+                impact_model(
+                    black_box(&impact.mass),
+                    &mut s,
+                    &mut v,
+                    impact.closing,
+                    &opts,
+                )
+                .unwrap();
+                (s, v)
+            };
+            let (s, v) = run();
+            assert!(s == answer.statuses && answer.rates[0].matches(v[0]));
+            assert!(answer.rates[1].matches(v[1]));
+            let id = format!("impact {solver:?}, {} impact(s)", answer.n_impacts);
+            g.bench_function(id, |b| b.iter(run));
+        }
+        let opts = ModelOptions {
+            solver,
+            ..ModelOptions::default()
+        };
+        let run = || {
+            let mut s = vec![Status::Closed; 2];
+            let mut a = vec![0.0; 4];
+            opening_model(
+                black_box(&opening.mass),
+                &opening.load,
+                &mut s,
+                &mut a,
+                &opts,
+            )
+            .unwrap();
+            s
+        };
+        assert_eq!(run(), opening.expected);
+        g.bench_function(format!("opening {solver:?}"), |b| b.iter(run));
+    }
+    g.finish();
+}
+
+criterion_group!(benches, impacts, openings, c_abi, thesis_cases);
 criterion_main!(benches);
