@@ -1,15 +1,14 @@
 //! `rocking simulate`: the bundled scenes run and write what they promise; bad scenes fail with
 //! the field named and write nothing.
 
-use std::path::{Path, PathBuf};
-use std::process::Command;
+mod common;
 
-fn rocking() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_rocking"))
-}
+use std::path::PathBuf;
+
+use common::rocking;
 
 fn scenes() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/scenes")
+    common::root().join("examples/scenes")
 }
 
 fn fresh_dir(name: &str) -> PathBuf {
