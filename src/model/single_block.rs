@@ -198,7 +198,7 @@ impl MassDistribution {
     }
 
     /// `α` and the centre height ratio finite and positive.
-    pub fn validate(self) -> Result<(), InvalidValue> {
+    pub(crate) fn validate(self) -> Result<(), InvalidValue> {
         positive("alpha", self.alpha())?;
         positive("centre_height_ratio", self.centre_height_ratio())?;
         Ok(())

@@ -62,7 +62,7 @@ impl Record {
 
     /// `S[i] = ∫_{t_i}^{end} |a(t)| dt` of the linearly interpolated record (m/s), one entry per
     /// sample (the last is 0): the tail impulses that [`Record::impulse_after`] reads.
-    pub fn impulse_table(&self) -> Vec<f64> {
+    pub(crate) fn impulse_table(&self) -> Vec<f64> {
         let n = self.samples.len();
         let mut table = vec![0.0; n];
         for i in (0..n.saturating_sub(1)).rev() {
@@ -73,7 +73,7 @@ impl Record {
 
     /// `∫_t^end |a(s)| ds` (m/s) of the linearly interpolated record, from the `table` of
     /// [`Record::impulse_table`] (0 after the end, the whole record's before the start).
-    pub fn impulse_after(&self, table: &[f64], t: f64) -> f64 {
+    pub(crate) fn impulse_after(&self, table: &[f64], t: f64) -> f64 {
         let n = self.samples.len().min(table.len());
         if n == 0 {
             return 0.0;

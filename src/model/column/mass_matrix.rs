@@ -12,7 +12,7 @@ impl Pose {
     /// The expanded form loses digits when the column is far from the pivots compared with its
     /// size, so the entry is evaluated as `Σ m_j (c_j − P_a)·(c_j − P_b)` about the centre of mass
     /// of the part above: `S0 (g − P_a)·(g − P_b) + (S2 − S0 |g|²) + ΣI`.
-    pub fn mass_entry(&self, a: usize, b: usize) -> f64 {
+    pub(crate) fn mass_entry(&self, a: usize, b: usize) -> f64 {
         let n = self.centres.len();
         let k = (a % n).max(b % n);
         let pa = self.pivot(a);
@@ -27,7 +27,7 @@ impl Pose {
     }
 
     /// Entry `q[a]` of the load vector: `a_g (S1y − S0 P_ay) − g (S1x − S0 P_ax)` over `j ≥ k_a`.
-    pub fn load_entry(&self, a: usize, ground_acc: f64, gravity: f64) -> f64 {
+    pub(crate) fn load_entry(&self, a: usize, ground_acc: f64, gravity: f64) -> f64 {
         let n = self.centres.len();
         let k = a % n;
         let p = self.pivot(a);
@@ -55,20 +55,6 @@ impl Column {
                 let v = pose.mass_entry(a, b);
                 out[a * m + b] = v;
                 out[b * m + a] = v;
-            }
-        }
-    }
-
-    /// Mass matrix restricted to the DOFs `dofs` (indices into `0..2n`), row-major
-    /// `dofs.len()²` into `out`. The driver assembles only the open DOFs with this.
-    pub fn mass_submatrix_into(&self, pose: &Pose, dofs: &[usize], out: &mut [f64]) {
-        let m = dofs.len();
-        assert_eq!(out.len(), m * m);
-        for (r, &a) in dofs.iter().enumerate() {
-            for (c, &b) in dofs.iter().enumerate().skip(r) {
-                let v = pose.mass_entry(a, b);
-                out[r * m + c] = v;
-                out[c * m + r] = v;
             }
         }
     }

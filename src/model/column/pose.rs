@@ -56,12 +56,6 @@ impl Column {
         }
         pose.update_sums(self);
     }
-
-    /// Position of the centre of mass of the part of the column above interface `k`.
-    pub fn centre_of_mass_above(&self, pose: &Pose, k: usize) -> [f64; 2] {
-        let m = pose.suffix_mass[k];
-        [pose.suffix_moment[k][0] / m, pose.suffix_moment[k][1] / m]
-    }
 }
 
 /// Current positions of the pivots and block centres, with the suffix sums that make each mass
@@ -138,7 +132,7 @@ impl Pose {
     }
 
     /// Total mass of the part above interface `k` and its centre of mass.
-    pub fn mass_above(&self, k: usize) -> (f64, [f64; 2]) {
+    pub(crate) fn mass_above(&self, k: usize) -> (f64, [f64; 2]) {
         let s0 = self.suffix_mass[k];
         (
             s0,
