@@ -1,6 +1,8 @@
 //! Canonical cases with known answers (SPEC §8): the inputs and the numbers the thesis prints, to
-//! the printed digits. The crate's unit tests, the integration tests (`tests/models.rs`), the
-//! benches (`benches/models.rs`) and `rocking thesis` (its inputs) read them from here.
+//! the printed digits. The crate's unit tests, the integration tests (`tests/models.rs`,
+//! `tests/c_abi.rs`), the benches (`benches/models.rs`) and `rocking thesis` (its inputs) read
+//! them from here; the C examples' `c_examples/rocking_samples.h` and the Python smoke test's
+//! `tests/python/samples.json` are generated from them (`tests/c_abi.rs` checks for drift).
 //!
 //! A printed number is a [`Printed`]: the value and its number of decimals; a result reproduces
 //! it when it lies within half a unit of the last printed digit ([`Printed::matches`]).
@@ -127,26 +129,19 @@ pub fn two_granite_column() -> Column {
     .expect("valid blocks")
 }
 
-/// The mass matrix of [`two_granite_column`] standing straight, as printed in thesis Eq. 10
-/// (3 decimals).
-pub const EQ_10_MASS_MATRIX: [[Printed; 4]; 4] = [
-    printed_row([3.700, 1.175, 3.550, 1.100]),
-    printed_row([1.175, 0.500, 1.100, 0.425]),
-    printed_row([3.550, 1.100, 3.700, 1.175]),
-    printed_row([1.100, 0.425, 1.175, 0.500]),
+/// Thesis Eq. 10: the mass matrix of [`two_granite_column`], printed to
+/// [`THESIS_EQ10_DECIMALS`] decimals.
+pub const THESIS_EQ10_MASS: [[f64; 4]; 4] = [
+    [3.700, 1.175, 3.550, 1.100],
+    [1.175, 0.500, 1.100, 0.425],
+    [3.550, 1.100, 3.700, 1.175],
+    [1.100, 0.425, 1.175, 0.500],
 ];
 
-const fn printed_row(v: [f64; 4]) -> [Printed; 4] {
-    [
-        Printed::new(v[0], 3),
-        Printed::new(v[1], 3),
-        Printed::new(v[2], 3),
-        Printed::new(v[3], 3),
-    ]
-}
+/// Decimals of [`THESIS_EQ10_MASS`].
+pub const THESIS_EQ10_DECIMALS: i32 = 3;
 
-/// An impact problem: mass matrix, configuration and velocities before, closing interface, and
-/// what the thesis prints for it.
+/// An impact problem: mass matrix, configuration and velocities before, closing interface.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ImpactCase {
     /// `2n × 2n` mass matrix, row-major.
@@ -157,48 +152,78 @@ pub struct ImpactCase {
     pub velocity: Vec<f64>,
     /// The closing interface.
     pub closing: usize,
-    /// The printed answers, one per number of consecutive impacts.
-    pub answers: Vec<ImpactAnswer>,
 }
 
-/// The printed result of an impact with `n_impacts` consecutive impacts.
-#[derive(Clone, Debug, PartialEq)]
+/// What the thesis prints for [`two_block_impact`] with a number of consecutive impacts.
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ImpactAnswer {
-    /// Consecutive impacts of the impact model (1 = Housner).
+    /// Consecutive impacts per closing (1 = Housner, 2 = one bump in the middle).
     pub n_impacts: u32,
     /// Configuration after the impact.
-    pub statuses: Vec<Status>,
-    /// Rates of the DOFs that open, about the right corners (`phĭ_0`, `phĭ_1`) \[rad/s\]; the
-    /// other DOFs are zero.
-    pub rates: Vec<Printed>,
-    /// Absolute rotation rate of the top block, the sum of the interface rates \[rad/s\].
-    pub top_block_rate: Printed,
-    /// Kinetic energy lost, in percent.
-    pub loss_percent: Printed,
+    pub statuses: [Status; 2],
+    /// Interface rates after the impact, `phĭ_0`, `phĭ_1` (rad/s; both interfaces open about
+    /// their right corners), printed to [`ImpactAnswer::RATE_DECIMALS`] decimals.
+    pub rates: [f64; 2],
+    /// Absolute rotation rate of the top block, the sum of the interface rates (rad/s), printed
+    /// to [`ImpactAnswer::RATE_DECIMALS`] decimals.
+    pub top_block_rate: f64,
+    /// Kinetic energy lost (%), printed to [`ImpactAnswer::LOSS_DECIMALS`] decimal.
+    pub loss_percent: f64,
 }
+
+impl ImpactAnswer {
+    /// Decimals of the printed rates.
+    pub const RATE_DECIMALS: i32 = 4;
+    /// Decimals of the printed loss.
+    pub const LOSS_DECIMALS: i32 = 1;
+
+    /// The interface rates as printed.
+    pub fn printed_rates(&self) -> [Printed; 2] {
+        self.rates.map(|r| Printed::new(r, Self::RATE_DECIMALS))
+    }
+
+    /// The top block's rate as printed.
+    pub fn printed_top_block_rate(&self) -> Printed {
+        Printed::new(self.top_block_rate, Self::RATE_DECIMALS)
+    }
+
+    /// The loss as printed.
+    pub fn printed_loss(&self) -> Printed {
+        Printed::new(self.loss_percent, Self::LOSS_DECIMALS)
+    }
+}
+
+/// Thesis Eq. 11 and SPEC §2 (misprint 2), the answers of [`two_block_impact`]: one impact,
+/// then two.
+pub const TWO_BLOCK_IMPACT_ANSWERS: [ImpactAnswer; 2] = [
+    ImpactAnswer {
+        n_impacts: 1,
+        statuses: [Status::OpenRight, Status::OpenRight],
+        rates: [-0.1079, -0.5965],
+        top_block_rate: -0.7044,
+        loss_percent: 25.6,
+    },
+    ImpactAnswer {
+        n_impacts: 2,
+        statuses: [Status::OpenRight, Status::OpenRight],
+        rates: [-0.0539, -0.7983],
+        top_block_rate: -0.8522,
+        loss_percent: 13.9,
+    },
+];
 
 /// Thesis Fig. 22: the lower block at rest, the upper one rotating about its left corner
 /// (`phî_1`) closes at 1 rad/s. One impact (Eq. 11, with the closing DOF's column: SPEC
 /// misprint 1): both interfaces open about their right corners at `(−0.1079, −0.5965)` rad/s,
 /// 25.6 % lost; two consecutive impacts (SPEC misprint 2): `(−0.0539, −0.7983)`, 13.9 % lost.
+/// The answers are [`TWO_BLOCK_IMPACT_ANSWERS`].
 pub fn two_block_impact() -> ImpactCase {
     let col = two_granite_column();
-    let answer = |n_impacts, rates: [f64; 2], top: f64, loss: f64| ImpactAnswer {
-        n_impacts,
-        statuses: vec![Status::OpenRight, Status::OpenRight],
-        rates: rates.iter().map(|&r| Printed::new(r, 4)).collect(),
-        top_block_rate: Printed::new(top, 4),
-        loss_percent: Printed::new(loss, 1),
-    };
     ImpactCase {
         mass: col.mass_matrix(&col.pose(&[0.0; 4])),
         statuses: vec![Status::Closed, Status::OpenLeft],
         velocity: vec![0.0, 0.0, 0.0, -1.0],
         closing: 1,
-        answers: vec![
-            answer(1, [-0.1079, -0.5965], -0.7044, 25.6),
-            answer(2, [-0.0539, -0.7983], -0.8522, 13.9),
-        ],
     }
 }
 
@@ -237,6 +262,62 @@ pub fn two_block_top_push() -> OpeningCase {
         mass: col.mass_matrix(&pose),
         load,
         expected: vec![Status::OpenLeft, Status::OpenRight],
+    }
+}
+
+/// An event of a time history as the thesis describes it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct EventAnswer {
+    /// `"opening"` or `"impact"`.
+    pub kind: &'static str,
+    /// The interface that opens or closes.
+    pub interface: usize,
+    /// Configuration after the event.
+    pub statuses_after: Vec<Status>,
+    /// Time the thesis prints (s), to the millisecond at best.
+    pub thesis_time: f64,
+}
+
+/// A column released from a tilt, free rocking (no ground motion).
+#[derive(Clone, Debug, PartialEq)]
+pub struct FreeRockingCase {
+    /// The blocks, bottom first.
+    pub blocks: Vec<Block>,
+    /// Initial angle of each interface (rad): `> 0` about its left corner (`phî`), `< 0` about
+    /// its right corner (`phĭ`).
+    pub initial_angles: Vec<f64>,
+    /// Consecutive impacts per closing.
+    pub n_impacts: u32,
+    /// The first events, in order.
+    pub events: Vec<EventAnswer>,
+}
+
+/// Thesis 4.2 (Fig. 28–29): two granite blocks 0.1 × 0.3 × 0.2 m (16.2 kg at 2700 kg/m³),
+/// 96 mm contacts, the upper block released at 0.153 rad, two consecutive impacts. The thesis:
+/// the lower interface opens at about 0.13 s, the upper block impacts at 0.187 s and turns
+/// round, the lower block impacts the base at 0.193 s and turns round (the directions as the
+/// models give them; `docs/validation.md` compares the times).
+pub fn two_block_free_rocking() -> FreeRockingCase {
+    let block = Block {
+        contact_width: Some(0.096),
+        ..Block::rectangle(0.1, 0.3, 16.2)
+    };
+    let event = |kind, interface, after: [Status; 2], thesis_time| EventAnswer {
+        kind,
+        interface,
+        statuses_after: after.to_vec(),
+        thesis_time,
+    };
+    use Status::{OpenLeft, OpenRight};
+    FreeRockingCase {
+        blocks: vec![block, block],
+        initial_angles: vec![0.0, 0.153],
+        n_impacts: 2,
+        events: vec![
+            event("opening", 0, [OpenLeft, OpenLeft], 0.13),
+            event("impact", 1, [OpenLeft, OpenRight], 0.187),
+            event("impact", 0, [OpenRight, OpenRight], 0.193),
+        ],
     }
 }
 
@@ -353,6 +434,11 @@ mod tests {
         assert!(!Printed::new(1.299, 3).matches(1.29847));
         assert_eq!(p.to_string(), "27.8");
         assert_eq!(Printed::new(-0.1079, 4).to_string(), "-0.1079");
-        assert_eq!(EQ_10_MASS_MATRIX[0][2].to_string(), "3.550");
+        let m02 = Printed::new(THESIS_EQ10_MASS[0][2], THESIS_EQ10_DECIMALS);
+        assert_eq!(m02.to_string(), "3.550");
+        assert_eq!(
+            TWO_BLOCK_IMPACT_ANSWERS[1].printed_rates()[1].to_string(),
+            "-0.7983"
+        );
     }
 }

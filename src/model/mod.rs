@@ -8,6 +8,7 @@ pub mod cone;
 pub mod configuration;
 pub mod enumeration;
 pub mod impact;
+pub mod interface_system;
 pub mod opening;
 pub mod projection;
 pub mod single_block;
