@@ -1,19 +1,15 @@
 //! `rocking t1`, `oas --merge`, `design width/check`: JSON outputs with the documented fields.
 
-use std::path::{Path, PathBuf};
-use std::process::Command;
+mod common;
 
+use std::path::PathBuf;
+
+use rocking::samples::PIER_EXAMPLE;
+
+/// `rocking args…` from the workspace root: (success, stdout, stderr).
 fn rocking(args: &[&str]) -> (bool, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_rocking"))
-        .args(args)
-        .current_dir(Path::new(env!("CARGO_MANIFEST_DIR")).join(".."))
-        .output()
-        .unwrap();
-    (
-        out.status.success(),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
+    let out = common::run(args);
+    (out.ok, out.stdout, out.stderr)
 }
 
 const SMALL: [&str; 4] = ["--levels", "8", "--sizes", "24"];
@@ -36,19 +32,24 @@ fn t1_json_has_the_documented_fields() {
 #[test]
 fn design_width_reproduces_the_pier_example() {
     // Thesis 5.3.4: a_g = 0.14 g, t_1 = 0.7 s, H = 12 m: B_a = 1.299 m, B_b = 2.122 m (Eq. 23
-    // gives 1.29847 for case a, printed 1.299 after double rounding: see design.rs).
-    let pga = format!("{}", 0.14 * 9.81);
-    for (mass, b) in [("uniform", 1.299), ("top", 2.122)] {
+    // gives 1.29847 for case a, printed 1.299 after double rounding: see the design tests).
+    let e = PIER_EXAMPLE;
+    let pga = format!("{}", e.pga_g * e.gravity);
+    let (height, t1) = (e.height.to_string(), e.t1.to_string());
+    for (mass, printed) in [("uniform", e.uniform.eq23), ("top", e.top.eq23)] {
         let (ok, out, err) = rocking(&[
-            "design", "width", "--height", "12", "--pga", &pga, "--t1", "0.7", "--mass", mass,
+            "design", "width", "--height", &height, "--pga", &pga, "--t1", &t1, "--mass", mass,
             "--json",
         ]);
         assert!(ok, "{err}");
         let v: serde_json::Value = serde_json::from_str(&out).unwrap();
-        assert!((v["width"].as_f64().unwrap() - b).abs() < 1e-3, "{v}");
+        assert!(
+            (v["width"].as_f64().unwrap() - printed.value).abs() < 1e-3,
+            "{v}"
+        );
     }
     let (ok, out, _) = rocking(&[
-        "design", "check", "--width", "1.2", "--height", "12", "--pga", &pga, "--t1", "0.7",
+        "design", "check", "--width", "1.2", "--height", &height, "--pga", &pga, "--t1", &t1,
         "--json",
     ]);
     assert!(ok);
@@ -135,10 +136,7 @@ fn oas_shards_merge_bitwise_to_the_whole() {
 #[test]
 fn t1_shards_merge_bitwise_to_the_whole() {
     let far = "../shared/records/fema-p695/farfield";
-    let shared = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("..")
-        .join(far)
-        .exists();
+    let shared = common::root().join(far).exists();
     let records: Vec<String> = if shared {
         [
             "RSN953_NORTHR_MUL009",

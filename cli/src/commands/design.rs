@@ -2,7 +2,7 @@
 //! `rocking::design`.
 
 use clap::{Args, Subcommand, ValueEnum};
-use rocking::design::{self, Branch, ImpulseFactor, MassDistribution, Pier};
+use rocking::design::{self, Branch, EquivalentBlock, ImpulseFactor, MassDistribution};
 use rocking::model::column::GRAVITY;
 use serde::Serialize;
 
@@ -151,7 +151,8 @@ fn width(a: &WidthArgs) -> Result<(), String> {
 
 fn check(a: &CheckArgs) -> Result<(), String> {
     let l = &a.load;
-    let pier = Pier::new(a.width, l.height, l.mass.distribution()).map_err(|e| e.to_string())?;
+    let pier = EquivalentBlock::new(a.width, l.height, l.mass.distribution())
+        .map_err(|e| e.to_string())?;
     let factor = if a.exact_icr {
         ImpulseFactor::Exact
     } else {

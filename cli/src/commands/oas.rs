@@ -73,7 +73,12 @@ pub fn run(a: &OasArgs) -> Result<(), String> {
         println!("record,level,size,p,f,simulations");
         for l in &result.levels {
             let (size, p) = match l.largest_unsafe {
-                Some(i) => (result.sizes[i], result.monolith(result.sizes[i]).p),
+                Some(i) => (
+                    result.sizes[i],
+                    result
+                        .block(result.sizes[i])
+                        .frequency_parameter(result.gravity),
+                ),
                 None => (f64::NAN, f64::NAN),
             };
             println!(
@@ -177,7 +182,7 @@ impl OasJson {
             .iter()
             .map(|l| {
                 let size = l.largest_unsafe.map(|i| o.sizes[i]);
-                let p = size.map(|r| o.monolith(r).p);
+                let p = size.map(|r| o.block(r).frequency_parameter(o.gravity));
                 Level {
                     level: *l,
                     size,
@@ -269,7 +274,9 @@ fn charts(o: &Oas) -> Vec<(&'static str, Chart)> {
         };
         by_p.push(curve(ps.iter().map(|&p| (p, eq21(p))).collect()));
         by_r.push(curve(
-            rs.iter().map(|&r| (r, eq21(o.monolith(r).p))).collect(),
+            rs.iter()
+                .map(|&r| (r, eq21(o.block(r).frequency_parameter(o.gravity))))
+                .collect(),
         ));
         by_f.push(Series {
             name: format!("f_min = i_cr / t1 (Eq. 20), t1 = {t1:.3} s"),
@@ -291,7 +298,9 @@ fn charts(o: &Oas) -> Vec<(&'static str, Chart)> {
             };
             by_p.push(curve(ps.iter().map(|&p| (p, eq30(p))).collect()));
             by_r.push(curve(
-                rs.iter().map(|&r| (r, eq30(o.monolith(r).p))).collect(),
+                rs.iter()
+                    .map(|&r| (r, eq30(o.block(r).frequency_parameter(o.gravity))))
+                    .collect(),
             ));
             by_f.push(Series {
                 name: format!(

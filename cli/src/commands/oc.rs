@@ -5,6 +5,7 @@
 use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
+use rocking::model::single_block::EquivalentBlock;
 use rocking::spectra::{self, column_of_size, linear_levels, log_sizes, PulseShape, SweepOptions};
 use serde::Serialize;
 
@@ -115,14 +116,16 @@ pub fn run(a: &OcArgs) -> Result<(), String> {
     let column = column_of_size(a.size, a.slenderness, a.blocks).map_err(|e| e.to_string())?;
     let mut sweep = SweepOptions::default();
     a.simulation.apply(&mut sweep);
-    let mono = spectra::Monolith::of(&column, sweep.simulation.gravity);
+    let block = EquivalentBlock::of_column(&column);
+    let g = sweep.simulation.gravity;
+    let (mono_p, mono_a_p_min) = (block.frequency_parameter(g), block.a_p_min(g));
     let ptp: Vec<f64> = log_sizes(a.ptp_max, a.ptp_min, a.ptp_n)
         .into_iter()
         .rev()
         .collect();
-    let t_p: Vec<f64> = a.shard.keep(&ptp).iter().map(|x| x / mono.p).collect();
+    let t_p: Vec<f64> = a.shard.keep(&ptp).iter().map(|x| x / mono_p).collect();
     let levels = linear_levels(1.0, a.level_max, a.level_n);
-    let a_p: Vec<f64> = levels.iter().map(|l| l * mono.a_p_min).collect();
+    let a_p: Vec<f64> = levels.iter().map(|l| l * mono_a_p_min).collect();
     let bar = progress::bar(t_p.len() as u64, "OC");
     let tick = || bar.inc(1);
     let res = spectra::overturning_curve(&column, shape, &t_p, &a_p, &sweep, Some(&tick))
@@ -153,8 +156,8 @@ pub fn run(a: &OcArgs) -> Result<(), String> {
         print_json(&OcJson {
             shape: shape.name(),
             blocks: a.blocks,
-            p: mono.p,
-            a_p_min: mono.a_p_min,
+            p: mono_p,
+            a_p_min: mono_a_p_min,
             points,
             envelope,
         })?;
@@ -166,8 +169,8 @@ pub fn run(a: &OcArgs) -> Result<(), String> {
                     "{},{},{t},{ap},{},{},{}",
                     shape.name(),
                     a.blocks,
-                    mono.p * t,
-                    ap / mono.a_p_min,
+                    mono_p * t,
+                    ap / mono_a_p_min,
                     u8::from(res.is_unsafe(i, j))
                 );
             }
