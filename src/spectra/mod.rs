@@ -27,6 +27,8 @@ use crate::driver::{overturns, DriverError, Recording, SimulationOptions};
 use crate::ground::excitation::{ExcitationError, Pulse};
 use crate::ground::records::Record;
 use crate::ground::GroundMotion;
+
+pub mod replacement_sine;
 use crate::model::column::{Block, Column, ColumnError};
 use crate::model::single_block::{self, ALPHA_UNIFORM};
 
