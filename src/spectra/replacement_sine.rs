@@ -88,7 +88,7 @@ mod tests {
         let mut s: Vec<f64> = (0..=4000)
             .map(|i| 3.0 * (std::f64::consts::PI * i as f64 * dt / 0.4).sin())
             .collect();
-        s.extend((1..=1000).map(|i| -1.0 * (std::f64::consts::PI * i as f64 * dt / 0.1).sin()));
+        s.extend((1..=1000).map(|i| -(std::f64::consts::PI * i as f64 * dt / 0.1).sin()));
         let r = replacement_sine(&record(dt, s)).unwrap();
         assert!((r.a_max - 3.0).abs() < 1e-9, "{r:?}");
         assert!(
