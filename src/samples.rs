@@ -167,3 +167,143 @@ pub fn two_block_free_rocking() -> FreeRockingCase {
         ],
     }
 }
+
+/// A single block's impact with the thesis's printed energy loss: a block `width × height` (1 kg,
+/// contact `contact_width`, or the full width) rotating about its left corner closes at 1 rad/s
+/// (one impact).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SingleBlockLoss {
+    /// What the thesis calls it.
+    pub label: &'static str,
+    /// Width (m).
+    pub width: f64,
+    /// Height (m).
+    pub height: f64,
+    /// Contact width (m); `None` for the full width.
+    pub contact_width: Option<f64>,
+    /// Kinetic energy lost (%), printed to 1 decimal.
+    pub loss_percent: f64,
+}
+
+/// Thesis Table 1 (Housner's energy loss for h/b = 2, 3, 4) and Appendix A Eq. A3 (Prieto 2007's
+/// cut-corner block, 2h = 500, 2b = 246, 2b₂ = 160 mm).
+pub const SINGLE_BLOCK_LOSSES: [SingleBlockLoss; 4] = [
+    SingleBlockLoss {
+        label: "Table 1, h/b = 2",
+        width: 0.1,
+        height: 0.2,
+        contact_width: None,
+        loss_percent: 51.0,
+    },
+    SingleBlockLoss {
+        label: "Table 1, h/b = 3",
+        width: 0.1,
+        height: 0.3,
+        contact_width: None,
+        loss_percent: 27.8,
+    },
+    SingleBlockLoss {
+        label: "Table 1, h/b = 4",
+        width: 0.1,
+        height: 0.4,
+        contact_width: None,
+        loss_percent: 16.9,
+    },
+    SingleBlockLoss {
+        label: "Prieto 2007 cut corners, Eq. A3",
+        width: 0.246,
+        height: 0.5,
+        contact_width: Some(0.160),
+        loss_percent: 25.2,
+    },
+];
+
+/// Thesis Appendix C: two 1 × 4 m blocks of 1 kg (uniform rectangles).
+pub fn appendix_c_column() -> Column {
+    Column::new(vec![
+        Block::rectangle(1.0, 4.0, 1.0),
+        Block::rectangle(1.0, 4.0, 1.0),
+    ])
+    .expect("valid blocks")
+}
+
+/// Ground acceleration of the Appendix C example (m/s²).
+pub const APPENDIX_C_GROUND_ACCELERATION: f64 = -1.0;
+
+/// What Appendix C prints for [`appendix_c_column`] in one pose: entries of `M̃` and `p̃` on the
+/// rotations about the right corners (`phĭ_0`, `phĭ_1`), to 3 decimals.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ReductionAnswer {
+    /// Equations of the thesis.
+    pub label: &'static str,
+    /// Rotation of the upper block about the right corner of interface 1 (degrees, `phĭ_1`).
+    pub upper_tilt_degrees: f64,
+    /// `M̃_11`, `M̃_12`, `M̃_22` (kg m²).
+    pub mass: [f64; 3],
+    /// `p̃_1`, `p̃_2` (N m).
+    pub load: [f64; 2],
+}
+
+/// Appendix C: straight (Eq. C12, C13) and the upper block inclined by 10° (Eq. C15, C16).
+pub const APPENDIX_C_ANSWERS: [ReductionAnswer; 2] = [
+    ReductionAnswer {
+        label: "straight (C12, C13)",
+        upper_tilt_degrees: 0.0,
+        mass: [43.333, 13.667, 5.667],
+        load: [1.810, 2.905],
+    },
+    ReductionAnswer {
+        label: "upper block at 10 deg (C15, C16)",
+        upper_tilt_degrees: -10.0,
+        mass: [43.785, 13.892, 5.667],
+        load: [-1.728, -0.633],
+    },
+];
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{impact_model, ModelOptions};
+
+    /// `value` printed with `decimals` decimals is `printed`.
+    fn prints_as(value: f64, printed: f64, decimals: i32) -> bool {
+        (value - printed).abs() <= 0.5 * 10f64.powi(-decimals) * (1.0 + 1e-9)
+    }
+
+    #[test]
+    fn single_block_losses_are_the_thesis_values() {
+        for case in SINGLE_BLOCK_LOSSES {
+            let col = Column::new(vec![Block {
+                contact_width: case.contact_width,
+                ..Block::rectangle(case.width, case.height, 1.0)
+            }])
+            .unwrap();
+            let mass = col.mass_matrix(&col.pose(&[0.0; 2]));
+            let (mut st, mut v) = (vec![Status::OpenLeft], vec![0.0, -1.0]);
+            let r = impact_model(&mass, &mut st, &mut v, 0, &ModelOptions::default()).unwrap();
+            let loss = 100.0 * (1.0 - r.kinetic_after / r.kinetic_before);
+            assert!(
+                prints_as(loss, case.loss_percent, 1),
+                "{}: {loss}",
+                case.label
+            );
+        }
+    }
+
+    #[test]
+    fn appendix_c_answers_are_the_thesis_values() {
+        let col = appendix_c_column();
+        for a in APPENDIX_C_ANSWERS {
+            let phi = [0.0, a.upper_tilt_degrees.to_radians(), 0.0, 0.0];
+            let pose = col.pose(&phi);
+            let m = col.mass_matrix(&pose);
+            let q = col.load_vector(&pose, APPENDIX_C_GROUND_ACCELERATION, GRAVITY);
+            for (got, want) in [m[0], m[1], m[5]].into_iter().zip(a.mass) {
+                assert!(prints_as(got, want, 3), "{}: {got} vs {want}", a.label);
+            }
+            for (got, want) in [q[0], q[1]].into_iter().zip(a.load) {
+                assert!(prints_as(got, want, 3), "{}: {got} vs {want}", a.label);
+            }
+        }
+    }
+}

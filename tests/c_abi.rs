@@ -376,12 +376,43 @@ fn samples_json() -> String {
         .flatten()
         .copied()
         .collect();
+    let losses: Vec<String> = samples::SINGLE_BLOCK_LOSSES
+        .iter()
+        .map(|c| {
+            format!(
+                "{{\"label\": {:?}, \"width\": {:?}, \"height\": {:?}, \"contact_width\": {}, \
+                 \"loss_percent\": {:?}}}",
+                c.label,
+                c.width,
+                c.height,
+                c.contact_width
+                    .map_or("null".to_string(), |w| format!("{w:?}")),
+                c.loss_percent
+            )
+        })
+        .collect();
+    let appendix_c = samples::appendix_c_column();
+    let ab = appendix_c.blocks();
+    let reductions: Vec<String> = samples::APPENDIX_C_ANSWERS
+        .iter()
+        .map(|a| {
+            format!(
+                "{{\"label\": {:?}, \"upper_tilt_degrees\": {:?}, \"mass\": {}, \"load\": {}}}",
+                a.label,
+                a.upper_tilt_degrees,
+                json_nums(&a.mass),
+                json_nums(&a.load)
+            )
+        })
+        .collect();
     format!(
         "{{\n  \"_generated\": \"from src/samples.rs by tests/c_abi.rs; do not edit (make header)\",\n  \
          \"two_block_impact\": {{\n    \"width\": {},\n    \"height\": {},\n    \"block_mass\": {},\n    \
          \"status\": {},\n    \"velocity\": {},\n    \"closing\": {},\n    \"thesis_eq10_mass\": {},\n    \
          \"answers\": [\n      {}\n    ]\n  }},\n  \"two_block_top_push\": {{\n    \"mass\": {},\n    \
-         \"load\": {},\n    \"expected_status\": {}\n  }}\n}}\n",
+         \"load\": {},\n    \"expected_status\": {}\n  }},\n  \"single_block_losses\": [\n    {}\n  ],\n  \
+         \"appendix_c\": {{\n    \"width\": {},\n    \"height\": {},\n    \"block_mass\": {},\n    \
+         \"ground_acceleration\": {:?},\n    \"answers\": [\n      {}\n    ]\n  }}\n}}\n",
         json_nums(&b.iter().map(|b| b.width).collect::<Vec<_>>()),
         json_nums(&b.iter().map(|b| b.height).collect::<Vec<_>>()),
         json_nums(&b.iter().map(|b| b.mass).collect::<Vec<_>>()),
@@ -393,6 +424,12 @@ fn samples_json() -> String {
         json_nums(&push.mass),
         json_nums(&push.load),
         json_statuses(&push.expected),
+        losses.join(",\n    "),
+        json_nums(&ab.iter().map(|b| b.width).collect::<Vec<_>>()),
+        json_nums(&ab.iter().map(|b| b.height).collect::<Vec<_>>()),
+        json_nums(&ab.iter().map(|b| b.mass).collect::<Vec<_>>()),
+        samples::APPENDIX_C_GROUND_ACCELERATION,
+        reductions.join(",\n      "),
     )
 }
 
