@@ -24,6 +24,11 @@ pub struct Floats {
 /// Converts `obj` to float64 (a TypeError naming `name` if numpy cannot) and copies it.
 pub fn floats(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<Floats> {
     let py = obj.py();
+    if obj.is_none() {
+        return Err(PyTypeError::new_err(format!(
+            "{name}: expected an array-like of numbers, got None"
+        )));
+    }
     let array = match obj.cast::<PyArrayDyn<f64>>() {
         Ok(a) => a.clone(),
         Err(_) => {
