@@ -39,6 +39,21 @@ from ._rocking import (
     triangular,
 )
 
+# Defaults, so that a RockingError raised from Python code has every attribute too.
+RockingError.code = None
+RockingError.name = None
+RockingError.message = None
+RockingError.detail = ""
+
+
+def _error(detail):
+    """A RockingError raised by the package's Python code (scenes, the OpenSees coupling): no C
+    code, ``detail`` names the field."""
+    e = RockingError(detail)
+    e.detail = detail
+    return e
+
+
 #: ``{C name: status code}`` of the C ABI (``ROCKING_OK`` = 0, ``ROCKING_ERR_*``): the values of
 #: :attr:`RockingError.code`.
 ERROR_CODES = dict(error_codes())
