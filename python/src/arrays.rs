@@ -4,7 +4,9 @@
 //! values are copied into a `Vec` — the caller's memory is only ever read.
 
 use numpy::ndarray::Array2;
-use numpy::{IntoPyArray, PyArray1, PyArray2, PyArrayDyn, PyArrayMethods};
+use numpy::{
+    Element, IntoPyArray, PyArray1, PyArray2, PyArrayDyn, PyArrayMethods, PyUntypedArrayMethods,
+};
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
@@ -21,40 +23,41 @@ pub struct Floats {
     pub shape: Vec<usize>,
 }
 
+/// The values of an array in row-major (logical) order and its shape: one copy, no borrow of the
+/// caller's array beyond this call.
+fn copy_out<T: Element + Copy>(array: &Bound<'_, PyArrayDyn<T>>) -> (Vec<T>, Vec<usize>) {
+    let shape = array.shape().to_vec();
+    let values = if array.is_c_contiguous() {
+        array.to_vec().expect("C-contiguous")
+    } else {
+        array.to_owned_array().iter().copied().collect()
+    };
+    (values, shape)
+}
+
 /// Converts `obj` to float64 (a TypeError naming `name` if numpy cannot) and copies it.
 pub fn floats(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<Floats> {
     let py = obj.py();
+    if let Ok(a) = obj.cast::<PyArrayDyn<f64>>() {
+        let (values, shape) = copy_out(a);
+        return Ok(Floats { values, shape });
+    }
     if obj.is_none() {
         return Err(PyTypeError::new_err(format!(
             "{name}: expected an array-like of numbers, got None"
         )));
     }
-    let array = match obj.cast::<PyArrayDyn<f64>>() {
-        Ok(a) => a.clone(),
-        Err(_) => {
-            let asarray = ASARRAY.import(py, "numpy", "asarray")?;
-            let converted = asarray.call1((obj, "float64")).map_err(|e| {
-                PyTypeError::new_err(format!(
-                    "{name}: cannot be read as an array of float64 ({e})"
-                ))
-            })?;
-            converted
-                .cast_into::<PyArrayDyn<f64>>()
-                .map_err(|_| PyTypeError::new_err(format!("{name}: not an array of float64")))?
-        }
-    };
-    let view = array
-        .try_readonly()
-        .map_err(|e| PyTypeError::new_err(format!("{name}: cannot be read ({e})")))?;
-    let view = view.as_array();
-    let values = match view.as_slice() {
-        Some(s) => s.to_vec(),
-        None => view.iter().copied().collect(),
-    };
-    Ok(Floats {
-        values,
-        shape: view.shape().to_vec(),
-    })
+    let asarray = ASARRAY.import(py, "numpy", "asarray")?;
+    let converted = asarray.call1((obj, "float64")).map_err(|e| {
+        PyTypeError::new_err(format!(
+            "{name}: cannot be read as an array of float64 ({e})"
+        ))
+    })?;
+    let array = converted
+        .cast_into::<PyArrayDyn<f64>>()
+        .map_err(|_| PyTypeError::new_err(format!("{name}: not an array of float64")))?;
+    let (values, shape) = copy_out(&array);
+    Ok(Floats { values, shape })
 }
 
 fn shape_text(shape: &[usize]) -> String {
@@ -128,6 +131,18 @@ pub fn any_matrix(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<(Vec<f64>, usi
 /// Interface statuses: a 1-D array-like of −1, 0, +1 (any numeric dtype; 0.5 or 3 are an
 /// `InvalidStatus` error naming the entry).
 pub fn statuses(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<Vec<i8>> {
+    if let Ok(a) = obj.cast::<PyArrayDyn<i8>>() {
+        let (values, shape) = copy_out(a);
+        if shape.len() == 1 {
+            if let Some(k) = values.iter().position(|v| !(-1..=1).contains(v)) {
+                return Err(error(
+                    ErrorKind::InvalidStatus,
+                    format!("{name}[{k}] = {}, expected -1, 0 or 1", values[k]),
+                ));
+            }
+            return Ok(values);
+        }
+    }
     let values = any_vector(obj, name)?;
     values
         .iter()
@@ -145,14 +160,14 @@ pub fn statuses(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<Vec<i8>> {
         .collect()
 }
 
-/// A new 1-D float64 array.
+/// A new 1-D float64 array (numpy's own memory).
 pub fn new_vector(py: Python<'_>, v: Vec<f64>) -> Bound<'_, PyArray1<f64>> {
-    v.into_pyarray(py)
+    PyArray1::from_slice(py, &v)
 }
 
-/// A new int8 status array.
+/// A new int8 status array (numpy's own memory).
 pub fn new_statuses(py: Python<'_>, v: Vec<i8>) -> Bound<'_, PyArray1<i8>> {
-    v.into_pyarray(py)
+    PyArray1::from_slice(py, &v)
 }
 
 /// A new `rows × cols` float64 array from row-major values.

@@ -288,3 +288,40 @@ pub fn check_configuration<'py>(
         numpy::IntoPyArray::into_pyarray(must_open, py).into_any(),
     ))
 }
+
+/// Benchmark hook (`python/benches/overhead.py`): mean seconds per call of the library's impact
+/// model alone on these inputs, over `repeats` calls (the inputs converted once, the in-place
+/// arrays reset before each call as a C caller would), so that the binding's overhead is the
+/// Python call's time minus this, measured in one process.
+#[pyfunction]
+#[pyo3(signature = (mass, status, velocity, closing_interface, n_impacts = 1, repeats = 100_000))]
+pub fn _time_impact_model(
+    mass: &Bound<'_, PyAny>,
+    status: &Bound<'_, PyAny>,
+    velocity: &Bound<'_, PyAny>,
+    closing_interface: usize,
+    n_impacts: i64,
+    repeats: u32,
+) -> PyResult<f64> {
+    let opts = options(n_impacts, "auto", 1e-12)?;
+    let st0 = decode(&statuses(status, "status")?)?;
+    let n = st0.len();
+    let mass = matrix(mass, "mass", 2 * n, 2 * n)?;
+    let v0 = vector(velocity, "velocity", 2 * n)?;
+    let (mut st, mut v) = (st0.clone(), v0.clone());
+    let start = std::time::Instant::now();
+    for _ in 0..repeats.max(1) {
+        st.copy_from_slice(&st0);
+        v.copy_from_slice(&v0);
+        let r = rocking::impact_model(
+            std::hint::black_box(&mass),
+            &mut st,
+            &mut v,
+            closing_interface,
+            &opts,
+        )
+        .py()?;
+        std::hint::black_box((&st, &v, r));
+    }
+    Ok(start.elapsed().as_secs_f64() / f64::from(repeats.max(1)))
+}
