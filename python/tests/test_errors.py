@@ -48,6 +48,8 @@ IMPACT_CASES = [
     ("inf in velocity", lambda M: dict(velocity=np.array([0, 0, 0, -math.inf])), "ROCKING_ERR_NOT_FINITE", "velocity[3] = -inf"),
     ("non-symmetric mass", lambda M: dict(mass=mutated(M, 1, 9.0)), "ROCKING_ERR_NOT_SYMMETRIC", "mass[0][1] = 9"),
     ("status 3", lambda M: dict(status=[0, 3]), "ROCKING_ERR_INVALID_STATUS", "status[1] = 3"),
+    ("status 3 (int8)", lambda M: dict(status=np.array([0, 3], dtype=np.int8)), "ROCKING_ERR_INVALID_STATUS", "status[1] = 3"),
+    ("status -1 of 2-D int8", lambda M: dict(status=np.array([[0, 1]], dtype=np.int8)), "ROCKING_ERR_INVALID_SIZE", "status has shape (1, 2)"),
     ("status 0.5", lambda M: dict(status=[0.5, 1]), "ROCKING_ERR_INVALID_STATUS", "status[0] = 0.5"),
     ("closing interface out of range", lambda M: dict(closing_interface=5), "ROCKING_ERR_INVALID_CLOSING_INTERFACE", "closing_interface = 5"),
     ("closing interface negative", lambda M: dict(closing_interface=-1), "ROCKING_ERR_INVALID_CLOSING_INTERFACE", "closing_interface = -1"),
