@@ -10,6 +10,7 @@
 // Index loops mirror the thesis's matrix notation (M[a][b], sums over blocks j >= k).
 #![allow(clippy::needless_range_loop)]
 
+pub mod chain;
 pub mod design;
 pub mod driver;
 pub mod error;
@@ -24,5 +25,6 @@ pub mod validate;
 pub use error::{ErrorKind, RockingError};
 pub use model::cone::{ModelOptions, ModelReport, Solver};
 pub use model::configuration::Status;
+pub use model::constrained::{impact_model_constrained, opening_model_constrained};
 pub use model::impact::impact_model;
 pub use model::opening::{check_configuration, opening_model};

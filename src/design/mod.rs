@@ -192,6 +192,11 @@ pub enum ImpulseFactor {
 
 /// Which inequality of Eq. 31 gives the (larger) admissible acceleration.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(rename_all = "kebab-case")
+)]
 pub enum Branch {
     /// `a_p ≤ a_p,min`: the block does not even start to rock.
     NoRocking,
@@ -201,6 +206,7 @@ pub enum Branch {
 
 /// The verdict of the design check Eq. 31 (Eq. 21) and the numbers behind it.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct DesignCheck {
     /// `true` when `a_p ≤ limit`.
     pub safe: bool,

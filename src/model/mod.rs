@@ -6,6 +6,7 @@ pub mod cholesky;
 pub mod column;
 pub mod cone;
 pub mod configuration;
+pub mod constrained;
 pub mod enumeration;
 pub mod impact;
 pub mod interface_system;

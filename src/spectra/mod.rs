@@ -600,6 +600,7 @@ pub fn log_sizes(largest: f64, smallest: f64, n: usize) -> Vec<f64> {
 
 /// How the largest unsafe size is searched for at each level.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum SizeSearch {
     /// The thesis's search: from the largest size down, stop at the first that overturns.
     /// Exact on the grid (islands of unsafe sizes included).
@@ -735,6 +736,7 @@ impl<'a> PreparedRecord<'a> {
 
 /// One level of an OAS.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct OasLevel {
     /// `a_p / a_p,min`.
     pub level: f64,

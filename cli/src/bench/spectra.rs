@@ -9,20 +9,27 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::time::Instant;
 
+use clap::Args;
 use rocking::ground::records::{parse_at2, read_record, PlainFormat, Record};
 use rocking::spectra::{self, OasOptions};
 
-use crate::output::{progress_bar, write_atomic};
+use crate::output::write_atomic;
+use crate::progress;
 
 /// Options of `rocking bench spectra`.
+#[derive(Args, Debug)]
 pub struct SpectraBenchArgs {
-    /// Records (AT2 or plain text); none: the bundled synthetic record.
+    /// Records (.AT2 or plain text); none: the bundled synthetic record.
     pub records: Vec<PathBuf>,
-    /// Also run every simulation to its end, and compare.
+    /// Run each record again with every simulation run to its end (no energy-bound stop):
+    /// the speed ratio, and a check that both spectra are identical.
+    #[arg(long)]
     pub compare: bool,
-    /// Write the Markdown report here too.
+    /// Also write the Markdown report to this file.
+    #[arg(long)]
     pub out: Option<PathBuf>,
-    /// Rayon threads (default: all cores).
+    /// Threads (default: every core).
+    #[arg(long, value_parser = crate::commands::sweep::count)]
     pub threads: Option<usize>,
 }
 
@@ -39,7 +46,7 @@ struct Row {
 
 fn bundled() -> Result<Record, String> {
     parse_at2(
-        include_str!("../../examples/records/synthetic.AT2"),
+        include_str!("../../../examples/records/synthetic.AT2"),
         "synthetic (bundled)",
     )
     .map_err(|e| e.to_string())
@@ -54,7 +61,7 @@ fn timed_oas(record: &Record, options: &OasOptions) -> Result<(spectra::Oas, f64
 /// Runs the benchmark and prints the report (Markdown) on stdout.
 pub fn run(args: &SpectraBenchArgs) -> Result<(), String> {
     if let Some(n) = args.threads {
-        crate::spectra_cmd::set_threads(n);
+        crate::commands::sweep::set_threads(n);
     }
     let mut records = Vec::new();
     if args.records.is_empty() {
@@ -69,7 +76,7 @@ pub fn run(args: &SpectraBenchArgs) -> Result<(), String> {
     let options = OasOptions::default();
     let mut full_options = options.clone();
     full_options.sweep.simulation.stop_when_safe = false;
-    let bar = progress_bar(records.len() as u64, "OAS");
+    let bar = progress::bar(records.len() as u64, "OAS");
     let mut rows = Vec::new();
     for record in &records {
         bar.set_message(record.name.clone());

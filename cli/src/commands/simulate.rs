@@ -4,36 +4,42 @@
 //! `DIR/events.jsonl` (one JSON object per event) and `DIR/summary.json`. Files are written only
 //! after the simulation succeeded, each atomically.
 
+use std::collections::BTreeMap;
 use std::fmt::Write as _;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use rocking::driver::{self, Event, EventKind, Outcome, StopReason};
+use clap::Args;
+use rocking::driver::{self, EnergyBalance, EventKind, Outcome, StopReason};
 use rocking::ground::FnMotion;
-use rocking::{ModelReport, Status};
-use serde_json::{json, Value};
+use rocking::Status;
+use serde::Serialize;
 
-use crate::output::{progress_bar, write_atomic};
+use crate::output::{json_tree, write_atomic};
 use crate::plot::{Chart, Marker, Series, Style, COLORS};
+use crate::progress;
 use crate::scene::{self, Scene};
 
+/// Options of `rocking simulate`.
+#[derive(Args, Debug)]
+pub struct SimulateArgs {
+    /// The scene file (JSON: blocks, excitation, settings; see examples/scenes).
+    pub scene: PathBuf,
+    /// Output directory (created if needed).
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Draw block rotations against time with the events marked (.svg or .png).
+    #[arg(long, value_parser = crate::plot::plot_path)]
+    pub plot: Option<PathBuf>,
+}
+
 /// Runs the command.
-pub fn run(scene_path: &Path, out: &Path, plot: Option<&Path>) -> Result<(), String> {
-    if let Some(p) = plot {
-        match p.extension().and_then(|e| e.to_str()) {
-            Some("svg") | Some("png") => {}
-            _ => {
-                return Err(format!(
-                    "--plot {}: the file must end in .svg or .png",
-                    p.display()
-                ))
-            }
-        }
-    }
+pub fn run(a: &SimulateArgs) -> Result<(), String> {
+    let (scene_path, out, plot) = (a.scene.as_path(), a.out.as_path(), a.plot.as_deref());
     let scene = scene::load(scene_path).map_err(|e| e.to_string())?;
     let excitation = &scene.excitation;
     let motion = FnMotion(|t| excitation.acceleration(t), excitation.end_time());
-    let bar = progress_bar(1000, "simulating");
+    let bar = progress::bar(1000, "simulating");
     let mut report = |fraction: f64| bar.set_position((fraction * 1000.0) as u64);
     let started = Instant::now();
     let outcome = driver::simulate(&scene.column, &motion, &scene.options, Some(&mut report))
@@ -49,12 +55,12 @@ pub fn run(scene_path: &Path, out: &Path, plot: Option<&Path>) -> Result<(), Str
     if scene.output.events {
         let mut lines = String::new();
         for e in &outcome.events {
-            lines.push_str(&event_json(e).to_string());
+            lines.push_str(&json_tree(e)?.to_string());
             lines.push('\n');
         }
         write_atomic(&out.join("events.jsonl"), lines.as_bytes())?;
     }
-    let summary = summary_json(&scene, scene_path, &outcome, wall);
+    let summary = json_tree(&Summary::of(&scene, scene_path, &outcome, wall))?;
     let text = serde_json::to_string_pretty(&summary).map_err(|e| e.to_string())?;
     write_atomic(&out.join("summary.json"), format!("{text}\n").as_bytes())?;
     if let Some(p) = plot {
@@ -72,10 +78,6 @@ pub fn run(scene_path: &Path, out: &Path, plot: Option<&Path>) -> Result<(), Str
         out.display()
     );
     Ok(())
-}
-
-fn status_codes(s: &[Status]) -> Vec<i8> {
-    s.iter().map(|x| x.as_i8()).collect()
 }
 
 /// The history as CSV: per interface its signed angle and rate (`phĭ + phî`), per block its
@@ -128,35 +130,6 @@ fn kind_name(k: EventKind) -> &'static str {
     }
 }
 
-fn report_json(r: &ModelReport) -> Value {
-    json!({
-        "solver": format!("{:?}", r.solver).to_lowercase(),
-        "configurations_examined": r.configurations_examined,
-        "admissible": r.admissible,
-        "changed": r.changed,
-        "tie": r.tie,
-        "impacts_applied": r.impacts_applied,
-        "kinetic_before": r.kinetic_before,
-        "kinetic_after": r.kinetic_after,
-        "runner_up": r.runner_up,
-        "condition_estimate": r.condition_estimate,
-    })
-}
-
-/// One event as a JSON object.
-pub fn event_json(e: &Event) -> Value {
-    json!({
-        "t": e.t,
-        "kind": kind_name(e.kind),
-        "interface": e.interface,
-        "kinetic_before": e.kinetic_before,
-        "kinetic_after": e.kinetic_after,
-        "statuses_before": status_codes(&e.statuses_before),
-        "statuses_after": status_codes(&e.statuses_after),
-        "report": e.report.as_ref().map(report_json),
-    })
-}
-
 fn stop_text(s: &StopReason) -> String {
     match s {
         StopReason::Duration => "end of duration".into(),
@@ -185,35 +158,61 @@ fn stop_json(s: &StopReason) -> (&'static str, Option<usize>) {
     }
 }
 
-fn summary_json(scene: &Scene, path: &Path, o: &Outcome, wall: f64) -> Value {
-    let (reason, interface) = stop_json(&o.stop_reason);
-    let mut counts = serde_json::Map::new();
-    for e in &o.events {
-        let c = counts.entry(kind_name(e.kind)).or_insert(json!(0));
-        *c = json!(c.as_u64().unwrap_or(0) + 1);
+/// `summary.json`.
+#[derive(Serialize)]
+struct Summary<'a> {
+    scene: String,
+    title: &'a str,
+    excitation: String,
+    overturned: bool,
+    t_end: f64,
+    impacts: usize,
+    stop_reason: &'static str,
+    stop_interface: Option<usize>,
+    peak_block_rotation: &'a [f64],
+    statuses_end: &'a [Status],
+    /// Events by kind.
+    events: BTreeMap<&'static str, usize>,
+    energy: Energy,
+    dt: f64,
+    wall_time_s: f64,
+}
+
+/// The energy balance and its residual.
+#[derive(Serialize)]
+struct Energy {
+    #[serde(flatten)]
+    balance: EnergyBalance,
+    residual: f64,
+}
+
+impl<'a> Summary<'a> {
+    fn of(scene: &'a Scene, path: &Path, o: &'a Outcome, wall: f64) -> Summary<'a> {
+        let (stop_reason, stop_interface) = stop_json(&o.stop_reason);
+        let mut events = BTreeMap::new();
+        for e in &o.events {
+            *events.entry(kind_name(e.kind)).or_insert(0) += 1;
+        }
+        Summary {
+            scene: path.display().to_string(),
+            title: &scene.title,
+            excitation: scene.excitation.describe(),
+            overturned: o.overturned,
+            t_end: o.t_end,
+            impacts: o.impacts,
+            stop_reason,
+            stop_interface,
+            peak_block_rotation: &o.peak_block_rotation,
+            statuses_end: &o.statuses_end,
+            events,
+            energy: Energy {
+                balance: o.energy,
+                residual: o.energy.residual(),
+            },
+            dt: scene.options.dt,
+            wall_time_s: wall,
+        }
     }
-    json!({
-        "scene": path.display().to_string(),
-        "title": scene.title,
-        "excitation": scene.excitation.describe(),
-        "overturned": o.overturned,
-        "t_end": o.t_end,
-        "impacts": o.impacts,
-        "stop_reason": reason,
-        "stop_interface": interface,
-        "peak_block_rotation": o.peak_block_rotation,
-        "statuses_end": status_codes(&o.statuses_end),
-        "events": counts,
-        "energy": {
-            "ground_work": o.energy.ground_work,
-            "dissipated": o.energy.dissipated,
-            "kinetic_end": o.energy.kinetic_end,
-            "potential_change": o.energy.potential_change,
-            "residual": o.energy.residual(),
-        },
-        "dt": scene.options.dt,
-        "wall_time_s": wall,
-    })
 }
 
 fn chart(scene: &Scene, o: &Outcome) -> Result<Chart, String> {
@@ -240,19 +239,14 @@ fn chart(scene: &Scene, o: &Outcome) -> Result<Chart, String> {
     }
     for e in &o.events {
         let color = match e.kind {
-            EventKind::Impact => "#d62728",
-            EventKind::Opening => "#2ca02c",
-            EventKind::Settled => "#7f7f7f",
-            _ => "#000000",
+            EventKind::Impact => COLORS[1],
+            EventKind::Opening => COLORS[2],
+            EventKind::Settled => COLORS[7],
+            _ => (0, 0, 0),
         };
         chart.markers.push(Marker {
             x: e.t,
-            label: format!(
-                "{} {}",
-                kind_name(e.kind),
-                e.interface
-                    .map_or(String::new(), |k| format!("at interface {k}"))
-            ),
+            kind: kind_name(e.kind).to_string(),
             color,
         });
     }
