@@ -105,8 +105,8 @@ impl Report {
     fn __repr__(&self) -> String {
         format!(
             "Report(solver={:?}, changed={}, tie={}, impacts_applied={}, \
-             configurations_examined={}, admissible={}, kinetic_before={}, kinetic_after={}, \
-             runner_up={}, condition_estimate={})",
+             configurations_examined={}, admissible={}, kinetic_before={:?}, kinetic_after={:?}, \
+             runner_up={}, condition_estimate={:?})",
             self.solver,
             py_bool(self.changed),
             py_bool(self.tie),
@@ -133,7 +133,7 @@ fn py_float(x: f64) -> String {
     if x.is_nan() {
         "nan".to_string()
     } else {
-        x.to_string()
+        format!("{x:?}")
     }
 }
 
