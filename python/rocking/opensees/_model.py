@@ -148,6 +148,25 @@ class ColumnModel:
             right.append(self.position(lo[1]))
         return right + left
 
+    def centre_of_mass_above(self, k):
+        """Current centre of mass of the blocks above interface k (from the lumped masses)."""
+        total, sx, sy = 0.0, 0.0, 0.0
+        owner = dict(self.nodes)
+        for tag, m in self.mass_nodes:
+            if owner[tag] >= k:
+                x, y = self.position(tag)
+                total, sx, sy = total + m, sx + m * x, sy + m * y
+        return sx / total, sy / total
+
+    def overturned(self, k, status):
+        """Static tipping at open interface k: the centre of mass of the part above has passed
+        beyond its pivot (SPEC §5), left of the left corner or right of the right one."""
+        if status == 0:
+            return False
+        piv = self.pivots()[k if status < 0 else self.n + k]
+        x = self.centre_of_mass_above(k)[0]
+        return x > piv[0] if status < 0 else x < piv[0]
+
     def bearing_forces(self, k):
         """Forces of the left and right corner springs of interface k (compression < 0)."""
         return [self.ops.eleResponse(e, "basicForce")[0] for e in self.bearings[k]]
