@@ -20,6 +20,8 @@ pub mod ground;
 pub mod model;
 pub mod samples;
 pub mod spectra;
+#[cfg(test)]
+pub(crate) mod test_support;
 pub mod validate;
 
 pub use error::{ErrorKind, RockingError};

@@ -376,12 +376,67 @@ fn samples_json() -> String {
         .flatten()
         .copied()
         .collect();
+    // Thesis Table 1 (Housner's rows) and Appendix A Eq. A3 (Prieto 2007's cut corners).
+    let loss =
+        |label: String, width: f64, height: f64, contact: Option<f64>, p: samples::Printed| {
+            format!(
+                "{{\"label\": {label:?}, \"width\": {width:?}, \"height\": {height:?}, \
+             \"contact_width\": {}, \"loss_percent\": {:?}}}",
+                contact.map_or("null".to_string(), |w| format!("{w:?}")),
+                p.value
+            )
+        };
+    let mut losses: Vec<String> = samples::TABLE_1_HOUSNER
+        .iter()
+        .map(|r| {
+            let label = format!("Table 1, 2h = {} mm, 2b = {} mm", r.two_h, r.two_b);
+            loss(
+                label,
+                r.two_b / 1000.0,
+                r.two_h / 1000.0,
+                None,
+                r.loss_percent,
+            )
+        })
+        .collect();
+    let prieto = samples::PRIETO_CUT_CORNERS;
+    losses.push(loss(
+        "Prieto 2007 cut corners, Eq. A3".to_string(),
+        prieto.two_b / 1000.0,
+        prieto.two_h / 1000.0,
+        Some(prieto.two_b2 / 1000.0),
+        prieto.loss_percent,
+    ));
+    let appendix = [
+        ("straight (C12, C13)", samples::appendix_c_straight()),
+        (
+            "upper block at 10 deg (C15, C16)",
+            samples::appendix_c_inclined(),
+        ),
+    ];
+    let appendix_c = appendix[0].1.column.clone();
+    let ab = appendix_c.blocks();
+    let reductions: Vec<String> = appendix
+        .iter()
+        .map(|(label, case)| {
+            let mass: Vec<f64> = case.mass.iter().map(|&(_, _, p)| p.value).collect();
+            let load: Vec<f64> = case.load.iter().map(|&(_, p)| p.value).collect();
+            format!(
+                "{{\"label\": {label:?}, \"phi\": {}, \"mass\": {}, \"load\": {}}}",
+                json_nums(&case.phi),
+                json_nums(&mass),
+                json_nums(&load)
+            )
+        })
+        .collect();
     format!(
         "{{\n  \"_generated\": \"from src/samples.rs by tests/c_abi.rs; do not edit (make header)\",\n  \
          \"two_block_impact\": {{\n    \"width\": {},\n    \"height\": {},\n    \"block_mass\": {},\n    \
          \"status\": {},\n    \"velocity\": {},\n    \"closing\": {},\n    \"thesis_eq10_mass\": {},\n    \
          \"answers\": [\n      {}\n    ]\n  }},\n  \"two_block_top_push\": {{\n    \"mass\": {},\n    \
-         \"load\": {},\n    \"expected_status\": {}\n  }}\n}}\n",
+         \"load\": {},\n    \"expected_status\": {}\n  }},\n  \"single_block_losses\": [\n    {}\n  ],\n  \
+         \"appendix_c\": {{\n    \"width\": {},\n    \"height\": {},\n    \"block_mass\": {},\n    \
+         \"ground_acceleration\": {:?},\n    \"answers\": [\n      {}\n    ]\n  }}\n}}\n",
         json_nums(&b.iter().map(|b| b.width).collect::<Vec<_>>()),
         json_nums(&b.iter().map(|b| b.height).collect::<Vec<_>>()),
         json_nums(&b.iter().map(|b| b.mass).collect::<Vec<_>>()),
@@ -393,6 +448,12 @@ fn samples_json() -> String {
         json_nums(&push.mass),
         json_nums(&push.load),
         json_statuses(&push.expected),
+        losses.join(",\n    "),
+        json_nums(&ab.iter().map(|b| b.width).collect::<Vec<_>>()),
+        json_nums(&ab.iter().map(|b| b.height).collect::<Vec<_>>()),
+        json_nums(&ab.iter().map(|b| b.mass).collect::<Vec<_>>()),
+        appendix[0].1.ground_acc,
+        reductions.join(",\n      "),
     )
 }
 

@@ -218,14 +218,9 @@ pub fn build(spec: SceneSpec, base: &Path, name: &str) -> Result<Scene, SceneErr
         })
         .collect();
     let column = Column::new(blocks).map_err(|e| match e {
-        rocking::model::column::ColumnError::InvalidBlock {
-            block,
-            field,
-            value,
-            reason,
-        } => err(
-            &format!("blocks[{block}].{field}"),
-            format!("{value}: {reason}"),
+        rocking::model::column::ColumnError::InvalidBlock { block, invalid } => err(
+            &format!("blocks[{block}].{}", invalid.field),
+            format!("{}: {}", invalid.value, invalid.rule),
         ),
         other => err("blocks", other),
     })?;

@@ -8,6 +8,11 @@ use crate::validate::InvalidValue;
 
 /// What happened at an event.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(rename_all = "snake_case")
+)]
 pub enum EventKind {
     /// One or more closed interfaces opened (opening model).
     Opening,
@@ -25,6 +30,7 @@ pub enum EventKind {
 
 /// One event of a simulation.
 #[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Event {
     /// Time (s).
     pub t: f64,
@@ -123,6 +129,7 @@ impl History {
 /// Energy bookkeeping (J). Invariant: `ground_work − dissipated ≈ kinetic_end + potential_change`
 /// (kinetic energy at the start is zero: the column starts at rest).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct EnergyBalance {
     /// Work of the inertial load of the ground motion, `∫ −Σ_j m_j a_g ẋ_j dt`.
     pub ground_work: f64,

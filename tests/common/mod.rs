@@ -1,6 +1,8 @@
-//! Shared by the integration tests that compile C against `include/rocking.h` and the cdylib.
+//! Shared by the integration tests: compiling C against `include/rocking.h` and the cdylib
+//! (here), the harness's scenes (`scenes`), comparisons with printed numbers (`compare`).
 #![allow(dead_code)]
 
+pub mod compare;
 pub mod scenes;
 
 use std::path::{Path, PathBuf};
