@@ -13,7 +13,10 @@
 
 use std::path::{Path, PathBuf};
 
-use rocking::driver::{EventLocator, Integrator, Recording, SimulationOptions};
+use rocking::driver::{
+    EventLocator, InitialState, Integrator, PhysicsOptions, Recording, SimulationOptions,
+    SteppingOptions, StoppingOptions,
+};
 use rocking::ground::excitation::{Excitation, Pulse};
 use rocking::ground::records::{self, PlainFormat};
 use rocking::model::column::{Block, Column};
@@ -272,37 +275,44 @@ pub fn build(spec: SceneSpec, base: &Path, name: &str) -> Result<Scene, SceneErr
     }
     let defaults = SimulationOptions::default();
     let options = SimulationOptions {
-        dt: spec.dt,
-        duration: spec.duration,
-        integrator,
-        locator,
-        model: ModelOptions {
-            n_impacts: spec.impacts,
-            solver,
-            ..ModelOptions::default()
+        stepping: SteppingOptions {
+            dt: spec.dt,
+            integrator,
+            locator,
+            ..defaults.stepping
         },
-        friction: spec.friction.unwrap_or(defaults.friction),
-        gravity: spec.gravity.unwrap_or(defaults.gravity),
-        exact_velocity_terms: spec.exact_velocity_terms,
-        continue_until_fallen: spec.continue_until_fallen,
-        record: Recording {
+        stopping: StoppingOptions {
+            duration: spec.duration,
+            continue_until_fallen: spec.continue_until_fallen,
+            ..defaults.stopping
+        },
+        physics: PhysicsOptions {
+            model: ModelOptions {
+                n_impacts: spec.impacts,
+                solver,
+                ..ModelOptions::default()
+            },
+            friction: spec.friction.unwrap_or(defaults.physics.friction),
+            gravity: spec.gravity.unwrap_or(defaults.physics.gravity),
+            exact_velocity_terms: spec.exact_velocity_terms,
+        },
+        recording: Recording {
             history_every: spec.output.history.then_some(spec.output.every),
             events: true,
         },
-        initial_angles: spec.initial_angles,
-        ..defaults
+        initial: InitialState {
+            angles: spec.initial_angles,
+        },
     };
     options.validate(&column).map_err(|e| match e {
-        rocking::driver::DriverError::InvalidOption {
-            field,
-            value,
-            reason,
-        } => {
-            let field = match field {
-                "model.n_impacts" => "impacts",
+        rocking::driver::DriverError::InvalidOption(v) => {
+            // The option's path without its group (`stepping.dt` → `dt`), as the scene names it.
+            let field = match v.field.split_once('.').map_or(v.field.as_str(), |(_, f)| f) {
+                "angles" => "initial_angles",
+                "history_every" => "output.every",
                 f => f,
             };
-            err(field, format!("{value}: {reason}"))
+            err(field, format!("{}: {}", v.value, v.rule))
         }
         rocking::driver::DriverError::Model(e) => {
             let field = if e.kind == rocking::ErrorKind::InvalidOptions {
@@ -483,7 +493,7 @@ mod tests {
     fn a_good_scene_builds() {
         let s = parse(GOOD).unwrap();
         assert_eq!(s.column.n_interfaces(), 1);
-        assert_eq!(s.options.model.n_impacts, 1);
+        assert_eq!(s.options.physics.model.n_impacts, 1);
         assert!((s.excitation.peak() - 5.0).abs() < 1e-12);
         for (name, integrator) in [
             ("wilson", Integrator::default()),
@@ -498,8 +508,8 @@ mod tests {
                 ),
             );
             let s = parse(&text).unwrap();
-            assert_eq!(s.options.integrator, integrator);
-            assert_eq!(s.options.locator, EventLocator::Hermite);
+            assert_eq!(s.options.stepping.integrator, integrator);
+            assert_eq!(s.options.stepping.locator, EventLocator::Hermite);
         }
     }
 

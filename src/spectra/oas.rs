@@ -3,7 +3,7 @@
 
 use super::sweep::map_indexed;
 use super::{at_least_one_block, column_of_size, invalid, Progress, SpectraError, SweepOptions};
-use crate::driver::overturns;
+use crate::driver::overturns_with;
 use crate::ground::records::Record;
 use crate::ground::GroundMotion;
 use crate::model::single_block::{self, EquivalentBlock};
@@ -134,7 +134,7 @@ impl<'a> PreparedRecord<'a> {
     fn overturns(&self, level: f64, size: f64, options: &OasOptions) -> Result<bool, SpectraError> {
         let record = self.record;
         let column = column_of_size(size, options.slenderness, options.n_blocks)?;
-        let g = options.sweep.simulation.gravity;
+        let g = options.sweep.simulation.physics.gravity;
         let block = EquivalentBlock::of_column(&column);
         let factor = level * block.a_p_min(g) / self.pga;
         let p = block.frequency_parameter(g);
@@ -159,8 +159,8 @@ impl<'a> PreparedRecord<'a> {
         let mut sim = options.sweep.simulation(dt, end + tail);
         // After the last exceedance a closed column can never lift off again: stop there
         // (exact).
-        sim.quiet_after = Some(t_last - t0);
-        Ok(overturns(&column, &motion, &sim)?)
+        sim.stopping.quiet_after = Some(t_last - t0);
+        Ok(overturns_with(&column, &motion, sim)?)
     }
 }
 
@@ -354,10 +354,10 @@ pub fn oas(
         record: record.name.clone(),
         slenderness: options.slenderness,
         n_blocks: options.n_blocks,
-        n_impacts: options.sweep.simulation.model.n_impacts,
+        n_impacts: options.sweep.simulation.physics.model.n_impacts,
         search: options.search,
         sizes: options.sizes.clone(),
         levels: levels.into_iter().collect::<Result<_, _>>()?,
-        gravity: options.sweep.simulation.gravity,
+        gravity: options.sweep.simulation.physics.gravity,
     })
 }

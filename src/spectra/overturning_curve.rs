@@ -3,7 +3,7 @@
 
 use super::sweep::map_indexed;
 use super::{Progress, SpectraError, SweepOptions};
-use crate::driver::overturns;
+use crate::driver::overturns_with;
 use crate::ground::excitation::{Excitation, Pulse};
 use crate::model::column::Column;
 use crate::model::single_block::EquivalentBlock;
@@ -83,7 +83,7 @@ pub fn pulse_overturns(
     options: &SweepOptions,
 ) -> Result<bool, SpectraError> {
     options.validate()?;
-    let g = options.simulation.gravity;
+    let g = options.simulation.physics.gravity;
     let p = EquivalentBlock::of_column(column).frequency_parameter(g);
     let pulse = shape.pulse(a_p, t_p)?;
     // Never lifts off: no simulation needed (the peak of every shape is |a_p|).
@@ -92,7 +92,7 @@ pub fn pulse_overturns(
     }
     let dt = options.time_step.dt(None, Some(t_p), p);
     let sim = options.simulation(dt, pulse.end_time() + options.tail / p);
-    Ok(overturns(column, &Excitation::Pulse(pulse), &sim)?)
+    Ok(overturns_with(column, &Excitation::Pulse(pulse), sim)?)
 }
 
 /// An overturning curve: safe / unsafe on a grid of `(t_p, a_p)` (thesis Fig. 8, 33, 40, 41).
@@ -199,7 +199,7 @@ pub fn overturning_curve(
     Ok(Oc {
         shape,
         block: EquivalentBlock::of_column(column),
-        gravity: options.simulation.gravity,
+        gravity: options.simulation.physics.gravity,
         n_blocks: column.n_interfaces(),
         t_p: t_p.to_vec(),
         a_p: a_p.to_vec(),

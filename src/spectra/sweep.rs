@@ -2,7 +2,7 @@
 //! map over the points and the progress callback.
 
 use super::{at_least_one_block, SpectraError, TimeStep};
-use crate::driver::{Recording, SimulationOptions};
+use crate::driver::{PhysicsOptions, Recording, RunOptions, SimulationOptions, StoppingOptions};
 use crate::model::column::{Block, Column};
 use crate::model::single_block::EquivalentBlock;
 use crate::validate::{non_negative, positive};
@@ -30,10 +30,10 @@ pub fn column_of_size(
 /// Options shared by the OC and OAS sweeps.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SweepOptions {
-    /// Template of every simulation: integrator, event locator, impact model (`model.n_impacts`:
-    /// 1 = Housner, 2 = the thesis's recommended model, 10 ≈ rolling), friction, gravity,
-    /// overturning criterion. `dt` and `duration` are overwritten per simulation and `record`
-    /// by [`Recording::NONE`].
+    /// Template of every simulation: integrator, event locator, impact model
+    /// (`physics.model.n_impacts`: 1 = Housner, 2 = the thesis's recommended model, 10 ≈
+    /// rolling), friction, gravity, overturning criterion. Every simulation shares its physics
+    /// and stops, with its own `stepping.dt` and `stopping.duration`, recording nothing.
     pub simulation: SimulationOptions,
     /// Time step rule.
     pub time_step: TimeStep,
@@ -52,14 +52,20 @@ pub struct SweepOptions {
 impl Default for SweepOptions {
     /// Driver defaults (Wilson θ = 1.4, linear event location, Housner impacts, static tipping),
     /// except friction: infinite (the thesis does not check sliding), and
-    /// [`SimulationOptions::stop_when_safe`]: a single block that the rest of a record provably
+    /// [`StoppingOptions::stop_when_safe`]: a single block that the rest of a record provably
     /// cannot tip stops early (same verdicts: `oas_energy_bound_changes_nothing` in the tests).
     fn default() -> SweepOptions {
         SweepOptions {
             simulation: SimulationOptions {
-                friction: f64::INFINITY,
-                record: Recording::NONE,
-                stop_when_safe: true,
+                physics: PhysicsOptions {
+                    friction: f64::INFINITY,
+                    ..PhysicsOptions::default()
+                },
+                stopping: StoppingOptions {
+                    stop_when_safe: true,
+                    ..StoppingOptions::default()
+                },
+                recording: Recording::NONE,
                 ..SimulationOptions::default()
             },
             time_step: TimeStep::default(),
@@ -76,13 +82,8 @@ impl SweepOptions {
         Ok(())
     }
 
-    pub(super) fn simulation(&self, dt: f64, duration: f64) -> SimulationOptions {
-        SimulationOptions {
-            dt,
-            duration,
-            record: Recording::NONE,
-            ..self.simulation.clone()
-        }
+    pub(super) fn simulation(&self, dt: f64, duration: f64) -> RunOptions<'_> {
+        self.simulation.sweep_run(dt, duration)
     }
 }
 

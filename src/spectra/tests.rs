@@ -211,11 +211,12 @@ fn t1_converged_in_dt() {
     assert!(hi / lo <= 1.10, "{t1:?}");
 }
 
-/// Verdicts of every point of a grid with and without [`SimulationOptions::stop_when_safe`].
+/// Verdicts of every point of a grid with and without
+/// [`crate::driver::StoppingOptions::stop_when_safe`].
 fn verdicts_with_and_without_energy_bound(record: &Record, grid: &OasOptions) {
     let mut full = grid.clone();
-    full.sweep.simulation.stop_when_safe = false;
-    assert!(grid.sweep.simulation.stop_when_safe);
+    full.sweep.simulation.stopping.stop_when_safe = false;
+    assert!(grid.sweep.simulation.stopping.stop_when_safe);
     let mut unsafe_points = 0;
     for &level in &grid.levels {
         for &size in &grid.sizes {
@@ -241,7 +242,7 @@ fn oas_energy_bound_changes_nothing() {
     };
     verdicts_with_and_without_energy_bound(&record, &grid);
     let mut full = small_grid();
-    full.sweep.simulation.stop_when_safe = false;
+    full.sweep.simulation.stopping.stop_when_safe = false;
     assert_eq!(
         oas(&record, &small_grid(), None).unwrap(),
         oas(&record, &full, None).unwrap()

@@ -75,7 +75,7 @@ pub fn run(args: &SpectraBenchArgs) -> Result<(), String> {
     }
     let options = OasOptions::default();
     let mut full_options = options.clone();
-    full_options.sweep.simulation.stop_when_safe = false;
+    full_options.sweep.simulation.stopping.stop_when_safe = false;
     let bar = progress::bar(records.len() as u64, "OAS");
     let mut rows = Vec::new();
     for record in &records {

@@ -117,7 +117,7 @@ pub fn run(a: &OcArgs) -> Result<(), String> {
     let mut sweep = SweepOptions::default();
     a.simulation.apply(&mut sweep);
     let block = EquivalentBlock::of_column(&column);
-    let g = sweep.simulation.gravity;
+    let g = sweep.simulation.physics.gravity;
     let (mono_p, mono_a_p_min) = (block.frequency_parameter(g), block.a_p_min(g));
     let ptp: Vec<f64> = log_sizes(a.ptp_max, a.ptp_min, a.ptp_n)
         .into_iter()

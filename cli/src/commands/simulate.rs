@@ -209,7 +209,7 @@ impl<'a> Summary<'a> {
                 balance: o.energy,
                 residual: o.energy.residual(),
             },
-            dt: scene.options.dt,
+            dt: scene.options.stepping.dt,
             wall_time_s: wall,
         }
     }

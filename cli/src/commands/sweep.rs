@@ -126,19 +126,19 @@ impl SimulationArgs {
         if let Some(n) = self.threads {
             set_threads(n);
         }
-        s.simulation.model.n_impacts = self.impacts as u32;
+        s.simulation.physics.model.n_impacts = self.impacts as u32;
         s.time_step = s.time_step.scaled(self.dt_factor);
         if let Some(tail) = self.tail {
             s.tail = tail;
         }
         if self.hermite || self.rk4 {
-            s.simulation.locator = EventLocator::Hermite;
+            s.simulation.stepping.locator = EventLocator::Hermite;
         }
         if self.rk4 {
-            s.simulation.integrator = Integrator::Rk4;
+            s.simulation.stepping.integrator = Integrator::Rk4;
         }
         // Same verdicts either way (tested); only for checking that claim, or timing it.
-        s.simulation.stop_when_safe = !self.full_runs;
+        s.simulation.stopping.stop_when_safe = !self.full_runs;
     }
 }
 

@@ -79,11 +79,11 @@ pub(super) fn peer_rows_for(
         ("width", blk.width),
         ("height", blk.height),
         ("mass", blk.mass),
-        ("duration", scene.options.duration),
+        ("duration", scene.options.stopping.duration),
         ("mu", housner_mu(0.5 * blk.height, 0.5 * blk.width)),
-        ("gravity", scene.options.gravity),
+        ("gravity", scene.options.physics.gravity),
     ];
-    if let Some(a) = &scene.options.initial_angles {
+    if let Some(a) = &scene.options.initial.angles {
         expected.push(("theta0", a[0]));
     }
     if let Excitation::Pulse(Pulse::HalfSines {

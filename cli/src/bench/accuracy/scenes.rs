@@ -3,7 +3,8 @@
 
 use rocking::driver::reference::SingleBlockExact;
 use rocking::driver::{
-    self, EventKind, EventLocator, Integrator, Outcome, Recording, SimulationOptions,
+    self, EventKind, EventLocator, InitialState, Integrator, Outcome, PhysicsOptions, Recording,
+    SimulationOptions, StoppingOptions,
 };
 use rocking::ground::excitation::{Excitation, Pulse};
 use rocking::ground::FnMotion;
@@ -38,12 +39,12 @@ impl BenchScene {
         dt: f64,
     ) -> Result<Outcome, String> {
         let mut o = self.options.clone();
-        o.integrator = integrator;
-        o.locator = locator;
-        o.dt = dt;
+        o.stepping.integrator = integrator;
+        o.stepping.locator = locator;
+        o.stepping.dt = dt;
         // History about every 0.1 ms (the peak is refined between samples by cubic Hermite
         // interpolation, whose error at that spacing is far below every error measured here).
-        o.record = Recording {
+        o.recording = Recording {
             history_every: Some(((1e-4 / dt).round() as usize).max(1)),
             events: true,
         };
@@ -95,10 +96,18 @@ pub(super) fn scene_a() -> BenchScene {
         column: Column::new(vec![Block::rectangle(2.0 * b, 2.0 * h, mass)]).unwrap(),
         excitation: Excitation::None,
         options: SimulationOptions {
-            duration,
-            friction: f64::INFINITY,
-            initial_angles: Some(vec![-theta0]),
-            settle_interval: Some(SETTLE_INTERVAL),
+            stopping: StoppingOptions {
+                duration,
+                settle_interval: Some(SETTLE_INTERVAL),
+                ..StoppingOptions::default()
+            },
+            physics: PhysicsOptions {
+                friction: f64::INFINITY,
+                ..PhysicsOptions::default()
+            },
+            initial: InitialState {
+                angles: Some(vec![-theta0]),
+            },
             ..SimulationOptions::default()
         },
         peak_after_first_impact: true,
@@ -140,9 +149,15 @@ pub(super) fn scene_b() -> BenchScene {
         column: Column::new(vec![Block::rectangle(2.0 * b, 2.0 * h, mass)]).unwrap(),
         excitation: Excitation::pulse(Pulse::half_sine(amp, tp).unwrap()).unwrap(),
         options: SimulationOptions {
-            duration: SCENE_B_DURATION,
-            friction: f64::INFINITY,
-            settle_interval: Some(SETTLE_INTERVAL),
+            stopping: StoppingOptions {
+                duration: SCENE_B_DURATION,
+                settle_interval: Some(SETTLE_INTERVAL),
+                ..StoppingOptions::default()
+            },
+            physics: PhysicsOptions {
+                friction: f64::INFINITY,
+                ..PhysicsOptions::default()
+            },
             ..SimulationOptions::default()
         },
         peak_after_first_impact: false,
@@ -157,12 +172,18 @@ pub(super) fn scene_c() -> BenchScene {
     ])
     .unwrap();
     let mut options = SimulationOptions {
-        duration: 0.5,
-        friction: f64::INFINITY,
-        settle_interval: Some(SETTLE_INTERVAL),
+        stopping: StoppingOptions {
+            duration: 0.5,
+            settle_interval: Some(SETTLE_INTERVAL),
+            ..StoppingOptions::default()
+        },
+        physics: PhysicsOptions {
+            friction: f64::INFINITY,
+            ..PhysicsOptions::default()
+        },
         ..SimulationOptions::default()
     };
-    options.model.n_impacts = 2;
+    options.physics.model.n_impacts = 2;
     BenchScene {
         key: "c",
         title: "(c) three blocks 0.5 × 1.0, 0.4 × 0.8, 0.3 × 0.6 m, full sine 4 m/s² × 2 × 0.3 s, 2 impacts".into(),

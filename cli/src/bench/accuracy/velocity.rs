@@ -49,12 +49,12 @@ pub(super) fn velocity_terms_section() -> Result<String, String> {
     for (scene, dt) in [(&two_scene, 1e-4), (&c, 1e-4)] {
         for (loc, lname) in locators() {
             let mut o = scene.options.clone();
-            o.dt = dt;
-            o.locator = loc;
-            o.integrator = Integrator::default();
+            o.stepping.dt = dt;
+            o.stepping.locator = loc;
+            o.stepping.integrator = Integrator::default();
             let run = |exact: bool| -> Result<Metrics, String> {
                 let mut o = o.clone();
-                o.exact_velocity_terms = exact;
+                o.physics.exact_velocity_terms = exact;
                 let exc = &scene.excitation;
                 let motion = FnMotion(|t| exc.acceleration(t), exc.end_time());
                 let out = driver::simulate(&scene.column, &motion, &o, None)
@@ -89,8 +89,8 @@ pub(super) fn velocity_terms_section() -> Result<String, String> {
     let b = scene_b();
     let over = |amp: f64, exact: bool| -> Result<(bool, Metrics), String> {
         let mut o = b.options.clone();
-        o.exact_velocity_terms = exact;
-        o.dt = 1e-4;
+        o.physics.exact_velocity_terms = exact;
+        o.stepping.dt = 1e-4;
         let exc = Excitation::pulse(Pulse::half_sine(amp, SCENE_B_PULSE.1).unwrap()).unwrap();
         let motion = FnMotion(|t| exc.acceleration(t), exc.end_time());
         let out = driver::simulate(&b.column, &motion, &o, None).map_err(|e| e.to_string())?;

@@ -1,7 +1,5 @@
-//! Event location inside a step (linear and cubic Hermite interpolation, Illinois root finding)
-//! and the settling projection.
-
-use crate::model::cholesky;
+//! Event location inside a step: the interpolants of a step (cubic and quintic Hermite) and the
+//! root finding on them (Illinois), free of the driver's state.
 
 /// Cubic Hermite interpolation of `y` on a step of length `h` at `s ∈ [0, 1]` from the values
 /// and derivatives at both ends.
@@ -139,33 +137,6 @@ pub(crate) fn hermite_crossing(h: f64, g0: f64, g1: f64, r0: f64, r1: f64) -> f6
     }
     // f = −g: from <= 0 (before) to > 0 (after).
     illinois(|s| -cubic(s), lo, flo, 1.0, -g1, 1e-13)
-}
-
-/// Removes DOF `d` from the open set `open` by the kinetic-metric projection
-/// `v_F ← v_F + M_FF⁻¹ M_{F,d} v_d`, `v_d ← 0` (the velocity closest to `v` in kinetic energy with
-/// `d` locked). `mass` is the full row-major `m × m` matrix.
-pub(crate) fn lock_dof(mass: &[f64], m: usize, open: &[usize], d: usize, rates: &mut [f64]) {
-    let others: Vec<usize> = open.iter().copied().filter(|&f| f != d).collect();
-    let k = others.len();
-    let vd = rates[d];
-    rates[d] = 0.0;
-    if k == 0 || vd == 0.0 {
-        return;
-    }
-    let mut a = vec![0.0; k * k];
-    let mut x = vec![0.0; k];
-    for (r, &fr) in others.iter().enumerate() {
-        for (c, &fc) in others.iter().enumerate() {
-            a[r * k + c] = mass[fr * m + fc];
-        }
-        x[r] = mass[fr * m + d] * vd;
-    }
-    if cholesky::factor(&mut a, k) {
-        cholesky::solve(&a, k, &mut x);
-        for (r, &fr) in others.iter().enumerate() {
-            rates[fr] += x[r];
-        }
-    }
 }
 
 #[cfg(test)]
