@@ -19,6 +19,8 @@ pub mod ffi;
 pub mod ground;
 pub mod model;
 pub mod samples;
+#[cfg(feature = "serde")]
+pub mod scene;
 pub mod spectra;
 #[cfg(test)]
 pub(crate) mod test_support;

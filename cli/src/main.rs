@@ -13,7 +13,6 @@ mod commands;
 mod output;
 mod plot;
 mod progress;
-mod scene;
 
 use commands::{design, oas, oc, simulate, t1, thesis};
 

@@ -18,7 +18,7 @@ use serde::Serialize;
 use crate::output::{json_tree, write_atomic};
 use crate::plot::{Chart, Marker, Series, Style, COLORS};
 use crate::progress;
-use crate::scene::{self, Scene};
+use rocking::scene::{self, Scene};
 
 /// Options of `rocking simulate`.
 #[derive(Args, Debug)]

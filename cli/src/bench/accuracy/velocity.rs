@@ -23,11 +23,11 @@ pub(super) fn velocity_terms_section() -> Result<String, String> {
     );
     // Thesis 4.2 two-block scene, as bundled.
     let two = {
-        let spec: crate::scene::SceneSpec = serde_json::from_str(include_str!(
+        let spec: rocking::scene::SceneSpec = serde_json::from_str(include_str!(
             "../../../../examples/scenes/two_block_free_rocking.json"
         ))
         .map_err(|e| e.to_string())?;
-        crate::scene::build(spec, Path::new("."), "two_block_free_rocking.json")
+        rocking::scene::build(spec, Path::new("."), "two_block_free_rocking.json")
             .map_err(|e| e.to_string())?
     };
     let two_scene = BenchScene {

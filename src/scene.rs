@@ -1,4 +1,5 @@
-//! Scenes: a column, an excitation and simulation settings, as JSON.
+//! Scenes: a column, an excitation and simulation settings, as JSON — the one schema of
+//! `rocking simulate` and the Python package's `rocking.simulate` (behind the `serde` feature).
 //!
 //! ```json
 //! {
@@ -13,14 +14,14 @@
 
 use std::path::{Path, PathBuf};
 
-use rocking::driver::{
+use crate::driver::{
     EventLocator, InitialState, Integrator, PhysicsOptions, Recording, SimulationOptions,
     SteppingOptions, StoppingOptions,
 };
-use rocking::ground::excitation::{Excitation, Pulse};
-use rocking::ground::records::{self, PlainFormat};
-use rocking::model::column::{Block, Column};
-use rocking::model::cone::{ModelOptions, Solver};
+use crate::ground::excitation::{Excitation, Pulse};
+use crate::ground::records::{self, PlainFormat};
+use crate::model::column::{Block, Column};
+use crate::model::cone::{ModelOptions, Solver};
 use serde::Deserialize;
 
 /// One block, bottom to top.
@@ -218,7 +219,7 @@ pub fn build(spec: SceneSpec, base: &Path, name: &str) -> Result<Scene, SceneErr
         })
         .collect();
     let column = Column::new(blocks).map_err(|e| match e {
-        rocking::model::column::ColumnError::InvalidBlock { block, invalid } => err(
+        crate::model::column::ColumnError::InvalidBlock { block, invalid } => err(
             &format!("blocks[{block}].{}", invalid.field),
             format!("{}: {}", invalid.value, invalid.rule),
         ),
@@ -305,7 +306,7 @@ pub fn build(spec: SceneSpec, base: &Path, name: &str) -> Result<Scene, SceneErr
         },
     };
     options.validate(&column).map_err(|e| match e {
-        rocking::driver::DriverError::InvalidOption(v) => {
+        crate::driver::DriverError::InvalidOption(v) => {
             // The option's path without its group (`stepping.dt` → `dt`), as the scene names it.
             let field = match v.field.split_once('.').map_or(v.field.as_str(), |(_, f)| f) {
                 "angles" => "initial_angles",
@@ -314,8 +315,8 @@ pub fn build(spec: SceneSpec, base: &Path, name: &str) -> Result<Scene, SceneErr
             };
             err(field, format!("{}: {}", v.value, v.rule))
         }
-        rocking::driver::DriverError::Model(e) => {
-            let field = if e.kind == rocking::ErrorKind::InvalidOptions {
+        crate::driver::DriverError::Model(e) => {
+            let field = if e.kind == crate::ErrorKind::InvalidOptions {
                 "impacts"
             } else {
                 "scene"
@@ -333,7 +334,7 @@ pub fn build(spec: SceneSpec, base: &Path, name: &str) -> Result<Scene, SceneErr
 }
 
 fn excitation(spec: &ExcitationSpec, base: &Path) -> Result<Excitation, SceneError> {
-    let pulse = |p: Result<Pulse, rocking::ground::excitation::ExcitationError>| {
+    let pulse = |p: Result<Pulse, crate::ground::excitation::ExcitationError>| {
         p.and_then(Excitation::pulse)
             .map_err(|e| err("excitation", e))
     };
