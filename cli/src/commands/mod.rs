@@ -7,3 +7,4 @@ pub mod simulate;
 pub mod sweep;
 pub mod t1;
 pub mod thesis;
+pub mod tp;
