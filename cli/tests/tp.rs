@@ -156,3 +156,40 @@ fn tp_reproduces_table_4() {
     }
     assert_eq!(exact, 43);
 }
+
+/// `--explain` on merged rows reruns only the governing point: the same answer as `--explain`
+/// while computing, and an error naming the file when the options differ from the rows'.
+#[test]
+fn explain_on_merged_rows_matches_the_computed_one() {
+    let mut args = vec![
+        "t1",
+        "examples/records/synthetic.AT2",
+        "--json",
+        "--explain",
+    ];
+    args.extend(SMALL);
+    let computed = json(&args);
+    let g = &computed[0]["governing"];
+    assert!(
+        g["end"].as_f64().unwrap() > g["start"].as_f64().unwrap(),
+        "{g}"
+    );
+    let dir = std::env::temp_dir().join(format!("rocking-explain-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut plain = computed.clone();
+    plain[0].as_object_mut().unwrap().remove("governing");
+    let shard = dir.join("rows.json");
+    std::fs::write(&shard, plain.to_string()).unwrap();
+    let shard = shard.to_str().unwrap();
+    let mut merge = vec!["t1", "--merge", shard, "--json", "--explain"];
+    merge.extend(SMALL);
+    assert_eq!(json(&merge)[0]["governing"], *g);
+    merge.extend(["--dt-factor", "0.5"]);
+    let out = common::run(&merge);
+    assert!(
+        !out.ok && out.stderr.contains("synthetic.AT2"),
+        "{}",
+        out.stderr
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -35,7 +35,9 @@ pub struct T1Args {
     #[arg(long)]
     pub json: bool,
     /// Add how the run of the governing point (the f_min point) ended: overturning time,
-    /// impacts, the last exceedance of the uplift acceleration by the scaled record.
+    /// impacts, the last exceedance of the uplift acceleration by the scaled record. With
+    /// --merge, one simulation per row (pass the options the rows were computed with: the
+    /// row's dt factor, slenderness, blocks and procedure are checked against them).
     #[arg(long)]
     pub explain: bool,
     /// Write PREFIX-tp.svg: t₁ against the replacement sine duration t_p, with the correlation
@@ -145,6 +147,30 @@ pub fn run(a: &T1Args) -> Result<(), String> {
         for r in rows.iter_mut().filter(|r| r.t_p.is_none()) {
             if let Ok(record) = super::sweep::read(std::path::Path::new(&r.file)) {
                 r.t_p = spectra::replacement_sine(&record).map(|s| s.t_p);
+            }
+        }
+        if a.explain {
+            let o = a.grid.options(&a.simulation);
+            let procedure =
+                (a.grid.procedure != Procedure::Converged).then(|| a.grid.procedure.name());
+            for r in &mut rows {
+                if r.dt_factor != a.simulation.dt_factor
+                    || r.slenderness != o.slenderness
+                    || r.blocks != o.n_blocks
+                    || r.procedure != procedure
+                {
+                    return Err(format!(
+                        "--explain: {} was computed with other options (dt factor {}, \
+                         slenderness {}, blocks {}, procedure {}): pass the same",
+                        r.file,
+                        r.dt_factor,
+                        r.slenderness,
+                        r.blocks,
+                        r.procedure.as_deref().unwrap_or("converged")
+                    ));
+                }
+                let record = super::sweep::read(std::path::Path::new(&r.file))?;
+                r.governing = governing(&record, &r.summary, &o)?;
             }
         }
         rows.sort_by(|x, y| x.file.cmp(&y.file));
