@@ -7,6 +7,7 @@
 // Index loops mirror the thesis's matrix notation (M[a][b], sums over blocks j >= k).
 #![allow(clippy::needless_range_loop)]
 
+pub mod contact;
 pub mod design;
 pub mod driver;
 pub mod error;
