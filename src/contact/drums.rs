@@ -20,7 +20,7 @@
 use crate::model::column::Column;
 
 /// Number of coordinates per drum (`x`, `y`, `θ`).
-pub const DOF_PER_DRUM: usize = 3;
+pub(crate) const DOF_PER_DRUM: usize = 3;
 
 /// The drums of a column and their joints, in natural coordinates.
 #[derive(Clone, Debug, PartialEq)]

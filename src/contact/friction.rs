@@ -83,6 +83,8 @@ pub struct SolveReport {
     /// Whether Lemke's algorithm failed too (round-off on a degenerate problem) and the nonsmooth
     /// Gauss–Seidel iteration gave the answer.
     pub gauss_seidel: bool,
+    /// Whether that iteration stopped at its cap of sweeps before its tolerance.
+    pub inexact: bool,
 }
 
 /// Why the problem could not be solved (none of the methods).
@@ -123,6 +125,7 @@ pub struct ContactProblem {
     pub(super) joints: Vec<JointContacts>,
     pub(super) red: Vec<Reduction>,
     pub(super) cp: Vec<B3>,
+    pub(super) dinv: Vec<B3>,
     pub(super) dp: Vec<[f64; 3]>,
     pub(super) z: Vec<[f64; 3]>,
     /// Impulses `(P_R, P_L, T)` of every joint.
@@ -149,7 +152,9 @@ pub(super) fn invert3(a: &B3, m: usize) -> Option<B3> {
         }
         2 => {
             let det = a[0][0] * a[1][1] - a[0][1] * a[1][0];
-            let scale = a[0][0].hypot(a[0][1]) * a[1][0].hypot(a[1][1]);
+            let scale = ((a[0][0] * a[0][0] + a[0][1] * a[0][1])
+                * (a[1][0] * a[1][0] + a[1][1] * a[1][1]))
+                .sqrt();
             if !(det.abs() > 1e-13 * scale && det.is_finite()) {
                 return None;
             }
@@ -211,6 +216,7 @@ impl ContactProblem {
             joints: vec![JointContacts::default(); n],
             red: vec![Reduction::default(); n],
             cp: vec![zero; n],
+            dinv: vec![zero; n],
             dp: vec![[0.0; 3]; n],
             z: vec![[0.0; 3]; n],
             p: vec![[0.0; 3]; n],
@@ -323,7 +329,7 @@ impl ContactProblem {
     }
 
     /// The reduction of joint `k` for status `st`.
-    fn reduce(&self, k: usize, st: &JointStatus) -> Reduction {
+    pub(super) fn reduce(&self, k: usize, st: &JointStatus) -> Reduction {
         let jc = &self.joints[k];
         let mut red = Reduction::default();
         let mut r = 0;
@@ -356,7 +362,7 @@ impl ContactProblem {
 
     /// `S_k X E_l`: rows of joint `k`'s reduction, columns of joint `l`'s.
     #[inline]
-    fn reduced_block(rk: &Reduction, x: &B3, rl: &Reduction) -> B3 {
+    pub(super) fn reduced_block(rk: &Reduction, x: &B3, rl: &Reduction) -> B3 {
         let mut out = [[0.0; 3]; 3];
         for i in 0..rk.size {
             let row = &x[rk.rows[i]];
@@ -368,7 +374,7 @@ impl ContactProblem {
     }
 
     #[inline]
-    fn reduced_block_t(rk: &Reduction, x: &B3, rl: &Reduction) -> B3 {
+    pub(super) fn reduced_block_t(rk: &Reduction, x: &B3, rl: &Reduction) -> B3 {
         // Uses Xᵀ: rows of X's columns.
         let mut out = [[0.0; 3]; 3];
         for i in 0..rk.size {
@@ -381,14 +387,34 @@ impl ContactProblem {
         out
     }
 
-    /// One linear solve for the statuses; fills `p` and `u`. `false` if singular.
-    fn linear_solve(&mut self, statuses: &[JointStatus]) -> bool {
+    /// One linear solve for the statuses; fills `p` and `u`. `false` if singular. Joints below
+    /// `from` have the statuses of the previous solve: their reductions and eliminated blocks are
+    /// kept (the coupling of joint `from − 1` with joint `from` is redone).
+    fn linear_solve(&mut self, statuses: &[JointStatus], from: usize) -> bool {
         let n = self.n;
-        for k in 0..n {
+        for k in from..n {
             self.red[k] = self.reduce(k, &statuses[k]);
         }
+        if from > 0 {
+            let k = from - 1;
+            let rk = self.red[k];
+            let rn = self.red[from];
+            let a_up = Self::reduced_block(&rk, &self.wo[k], &rn);
+            let dinv = self.dinv[k];
+            let mut c = [[0.0; 3]; 3];
+            for i in 0..rk.size {
+                for j in 0..rn.size {
+                    let mut acc = 0.0;
+                    for l in 0..rk.size {
+                        acc += dinv[i][l] * a_up[l][j];
+                    }
+                    c[i][j] = acc;
+                }
+            }
+            self.cp[k] = c;
+        }
         // Forward elimination.
-        for k in 0..n {
+        for k in from..n {
             let rk = self.red[k];
             let m = rk.size;
             if m == 0 {
@@ -424,6 +450,7 @@ impl ContactProblem {
             let Some(dinv) = invert3(&d, m) else {
                 return false;
             };
+            self.dinv[k] = dinv;
             let mut y = [0.0; 3];
             for i in 0..m {
                 for j in 0..m {
@@ -507,9 +534,15 @@ impl ContactProblem {
         }
     }
 
-    /// Status update of the active set method; returns whether anything changed.
-    fn update_statuses(&self, statuses: &mut [JointStatus], tol_u: f64, tol_p: f64) -> bool {
-        let mut changed = false;
+    /// Status update of the active set method; returns the lowest joint whose status changed.
+    fn update_statuses(
+        &self,
+        statuses: &mut [JointStatus],
+        tol_u: f64,
+        tol_p: f64,
+        single: bool,
+    ) -> Option<usize> {
+        let mut changed: Option<usize> = None;
         for k in 0..self.n {
             let jc = &self.joints[k];
             let st = statuses[k];
@@ -566,8 +599,12 @@ impl ContactProblem {
             if !any_next || jc.mu == 0.0 || jc.mu.is_infinite() {
                 next.slip = Slip::Stick;
             }
-            if next != st {
-                changed = true;
+            if next != st && changed.is_none() {
+                changed = Some(k);
+                if single {
+                    statuses[k] = next;
+                    break;
+                }
             }
             statuses[k] = next;
         }
@@ -610,12 +647,29 @@ impl ContactProblem {
                 scale_u = scale_u.max(self.b[k][a].abs());
             }
         }
-        let tol_u = 1e-12 * scale_u.max(1e-300);
+        let tol_u = 1e-10 * scale_u.max(1e-300);
+        // The impulse that changes a velocity by `scale_u`: the floor of the impulse tolerance
+        // (when every impulse is nearly zero, their own size is round-off).
+        let mut wmax = 0.0_f64;
+        for k in 0..n {
+            for a in 0..3 {
+                wmax = wmax.max(self.wd[k][a][a]);
+            }
+        }
+        let p_floor = if wmax > 0.0 { scale_u / wmax } else { 0.0 };
         self.history.clear();
         let mut report = SolveReport::default();
+        let mut from = 0;
+        // All violated statuses change at once (primal-dual active set); after a cycle, one joint
+        // at a time (the lowest: a least-index rule, Murty 1974); then the fallbacks.
+        let mut single = false;
+        let mut single_iterations = 0;
         loop {
             report.iterations += 1;
-            if !self.linear_solve(statuses) {
+            if single {
+                single_iterations += 1;
+            }
+            if !self.linear_solve(statuses, from) {
                 break;
             }
             let mut scale_p = 0.0_f64;
@@ -624,12 +678,19 @@ impl ContactProblem {
                     scale_p = scale_p.max(x.abs());
                 }
             }
-            let tol_p = 1e-12 * scale_p.max(1e-300);
-            if !self.update_statuses(statuses, tol_u, tol_p) {
-                return Ok(report);
+            let tol_p = 1e-10 * scale_p.max(p_floor).max(1e-300);
+            match self.update_statuses(statuses, tol_u, tol_p, single) {
+                None => return Ok(report),
+                Some(k) => from = k,
             }
             let sig = Self::signature(statuses);
-            if self.history.contains(&sig) || report.iterations >= MAX_ITERATIONS {
+            let seen = self.history.iter().position(|&h| h == sig);
+            if !single {
+                if seen.is_some() || report.iterations >= MAX_ITERATIONS {
+                    single = true;
+                    self.history.clear();
+                }
+            } else if seen.is_some() || single_iterations >= 4 * n + 8 {
                 break;
             }
             self.history.push(sig);
@@ -639,7 +700,7 @@ impl ContactProblem {
             return Ok(report);
         }
         report.gauss_seidel = true;
-        self.solve_gauss_seidel(statuses)?;
+        report.inexact = !self.solve_gauss_seidel(statuses)?;
         Ok(report)
     }
 

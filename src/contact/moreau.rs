@@ -119,6 +119,10 @@ pub struct StepCounters {
     pub projections: u64,
     /// Impacts located inside steps.
     pub located_impacts: u64,
+    /// Active-set iterations of the impact problems.
+    pub impact_iterations: u64,
+    /// Problems whose last fallback (nonsmooth Gauss–Seidel) stopped at its cap of sweeps.
+    pub inexact: u64,
 }
 
 /// Why a step failed.
@@ -135,6 +139,12 @@ impl From<SolveFailure> for StepError {
         StepError::Contact
     }
 }
+
+/// Landings of open ends faster than this fraction of `g h` are located inside the step.
+const SPLIT_OPEN: f64 = 0.01;
+/// Ends touching their face and approaching faster than this fraction of `g h` get the impact
+/// law at once.
+const SPLIT_TOUCHING: f64 = 0.1;
 
 /// Most impacts located in one step.
 const MAX_SPLITS: usize = 8;
@@ -179,9 +189,14 @@ pub struct Stepper {
     carried: Vec<[bool; 2]>,
     flags: Vec<[bool; 2]>,
     landing: Vec<[bool; 2]>,
+    start_rates: Vec<[[f64; 2]; 2]>,
+    missed: Vec<[Option<f64>; 2]>,
+    watching: bool,
+    missed_found: Option<f64>,
     /// Approach speed above which a landing is located (m/s): a tenth of what gravity gives in a
     /// step.
     v_split: f64,
+    v_touch: f64,
 }
 
 #[derive(Clone, Debug)]
@@ -190,7 +205,6 @@ struct Saved {
     q: Vec<f64>,
     v: Vec<f64>,
     statuses: Vec<JointStatus>,
-    geometry: Vec<JointGeometry>,
     energy: EnergyAccounts,
     counters: StepCounters,
     joint_impulses: Vec<[f64; 2]>,
@@ -240,7 +254,12 @@ impl Stepper {
             carried: vec![[false; 2]; n],
             flags: vec![[false; 2]; n],
             landing: vec![[false; 2]; n],
+            start_rates: vec![[[0.0; 2]; 2]; n],
+            missed: vec![[None; 2]; n],
+            watching: false,
+            missed_found: None,
             v_split: 0.0,
+            v_touch: 0.0,
             q,
             drums,
         };
@@ -369,7 +388,8 @@ impl Stepper {
             }
         }
         let t_end = self.t + h;
-        self.v_split = 0.1 * self.options.gravity * h;
+        self.v_split = SPLIT_OPEN * self.options.gravity * h;
+        self.v_touch = SPLIT_TOUCHING * self.options.gravity * h;
         let mut splits = 0;
         loop {
             let remaining = t_end - self.t;
@@ -384,9 +404,110 @@ impl Stepper {
                     continue;
                 }
             }
-            self.substep(remaining, motion, None)?;
+            let watch = self.options.locate_impacts && splits < MAX_SPLITS;
+            if watch {
+                self.save();
+                self.record_start_rates();
+            }
+            self.watching = watch;
+            let result = self.substep(remaining, motion, None);
+            self.watching = false;
+            result?;
+            if let Some(tau) = self.missed_found.take() {
+                // A landing the linear prediction missed (the end accelerated onto its face):
+                // back to the start of the sub-step, and locate it.
+                self.restore();
+                splits += 1;
+                let mut landing = std::mem::take(&mut self.landing);
+                self.missed_set(tau, remaining, &mut landing);
+                let result = self.integrate_and_impact(tau, &landing, motion);
+                self.landing = landing;
+                result?;
+                continue;
+            }
             self.t = t_end;
             return Ok(());
+        }
+    }
+
+    /// Gaps and normal rates of every end at the start of a sub-step (for [`Self::missed_landing`]).
+    fn record_start_rates(&mut self) {
+        for k in 0..self.drums.len() {
+            for c in 0..2 {
+                let e = &self.geometry[k].ends[c];
+                let (un, _) = self.drums.rates(&e.rows, &self.v, k);
+                self.start_rates[k][c] = [e.gap, un];
+            }
+        }
+    }
+
+    /// Root in `(0, h]` of the cubic Hermite interpolant of a gap going from `g0` (rate `u0`) to
+    /// `g1 ≤ 0` (rate `u1`) over `h`.
+    fn hermite_root(g0: f64, u0: f64, g1: f64, u1: f64, h: f64) -> f64 {
+        let p = |s: f64| {
+            let x = s / h;
+            let (x2, x3) = (x * x, x * x * x);
+            (2.0 * x3 - 3.0 * x2 + 1.0) * g0
+                + (x3 - 2.0 * x2 + x) * h * u0
+                + (-2.0 * x3 + 3.0 * x2) * g1
+                + (x3 - x2) * h * u1
+        };
+        let (mut lo, mut hi) = (0.0, h);
+        for _ in 0..60 {
+            let mid = 0.5 * (lo + hi);
+            if p(mid) > 0.0 {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        hi
+    }
+
+    /// Ends open at the start of the last sub-step of length `h` that ended inside their face
+    /// (deeper than a tenth of what the split speed covers in the step), arriving faster than the
+    /// split speed: their landing instants (Hermite) into `self.missed`, the first one returned.
+    fn missed_landing(&mut self, h: f64) -> Option<f64> {
+        let deep = 0.1 * self.v_split * h;
+        let mut best: Option<f64> = None;
+        for k in 0..self.drums.len() {
+            for c in 0..2 {
+                let tau = self.missed_time(k, c, h, deep);
+                self.missed[k][c] = tau;
+                if let Some(tau) = tau {
+                    if best.map_or(true, |b| tau < b) {
+                        best = Some(tau);
+                    }
+                }
+            }
+        }
+        best
+    }
+
+    fn missed_time(&self, k: usize, c: usize, h: f64, deep: f64) -> Option<f64> {
+        let [g0, u0] = self.start_rates[k][c];
+        // Only ends that the sub-step left free (its index set is still in `flags`).
+        if self.flags[k][c] {
+            return None;
+        }
+        let e = &self.geometry[k].ends[c];
+        if e.gap >= -deep {
+            return None;
+        }
+        let (u1, _) = self.drums.rates(&e.rows, &self.v, k);
+        if u1 >= -self.v_split {
+            return None;
+        }
+        Some(Self::hermite_root(g0, u0, e.gap, u1, h))
+    }
+
+    /// The missed landings within `1e-9` of the step of the first (recorded by
+    /// [`Self::missed_landing`] before the restore).
+    fn missed_set(&self, tau: f64, h: f64, out: &mut [[bool; 2]]) {
+        for k in 0..self.drums.len() {
+            for c in 0..2 {
+                out[k][c] = self.missed[k][c].is_some_and(|t| t <= tau + 1e-9 * h);
+            }
         }
     }
 
@@ -395,14 +516,11 @@ impl Stepper {
     fn landing_time(&self, k: usize, c: usize, v_split: f64) -> Option<f64> {
         let e = &self.geometry[k].ends[c];
         let (un, _) = self.drums.rates(&e.rows, &self.v, k);
-        if un >= -v_split {
-            return None;
-        }
-        Some(if e.gap <= self.contact_gap {
-            0.0
+        if e.gap <= self.contact_gap {
+            (un < -self.v_touch).then_some(0.0)
         } else {
-            e.gap / -un
-        })
+            (un < -v_split).then(|| e.gap / -un)
+        }
     }
 
     /// The first fast landing within `remaining`: `(τ, (joint, end))` by the linear prediction.
@@ -440,7 +558,6 @@ impl Stepper {
                 q: vec![0.0; self.q.len()],
                 v: vec![0.0; self.v.len()],
                 statuses: vec![JointStatus::default(); self.statuses.len()],
-                geometry: vec![JointGeometry::default(); self.geometry.len()],
                 energy: EnergyAccounts::default(),
                 counters: StepCounters::default(),
                 joint_impulses: vec![[0.0; 2]; self.joint_impulses.len()],
@@ -450,7 +567,6 @@ impl Stepper {
         saved.q.copy_from_slice(&self.q);
         saved.v.copy_from_slice(&self.v);
         saved.statuses.copy_from_slice(&self.statuses);
-        saved.geometry.copy_from_slice(&self.geometry);
         saved.energy = self.energy;
         saved.counters = self.counters;
         saved.joint_impulses.copy_from_slice(&self.joint_impulses);
@@ -462,10 +578,10 @@ impl Stepper {
         self.q.copy_from_slice(&s.q);
         self.v.copy_from_slice(&s.v);
         self.statuses.copy_from_slice(&s.statuses);
-        self.geometry.copy_from_slice(&s.geometry);
         self.energy = s.energy;
         self.counters = s.counters;
         self.joint_impulses.copy_from_slice(&s.joint_impulses);
+        self.update_geometry();
     }
 
     /// Integrates up to the first landing (trial, Hermite root, redo) and applies the impact.
@@ -513,29 +629,28 @@ impl Stepper {
             // Not there yet (it slowed down): keep the sub-step; the next round looks again.
             return Ok(());
         }
-        // Root of the cubic Hermite interpolant of the gap on [0, τ].
-        let hermite = |s: f64| {
-            let x = s / tau;
-            let (x2, x3) = (x * x, x * x * x);
-            (2.0 * x3 - 3.0 * x2 + 1.0) * g0
-                + (x3 - 2.0 * x2 + x) * tau * u0
-                + (-2.0 * x3 + 3.0 * x2) * g1
-                + (x3 - x2) * tau * u1
-        };
-        let (mut lo, mut hi) = (0.0, tau);
-        for _ in 0..60 {
-            let mid = 0.5 * (lo + hi);
-            if hermite(mid) > 0.0 {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
-        }
-        let tau_star = hi;
-        if (tau_star - tau).abs() > 1e-12 * tau {
+        let tau_star = Self::hermite_root(g0, u0, g1, u1, tau);
+        // Redo the sub-step to the root unless the trial already ended on the face (to the
+        // contact tolerance).
+        if g1 < -self.contact_gap && (tau_star - tau).abs() > 1e-12 * tau {
             self.restore();
             self.substep(tau_star, motion, Some(landing))?;
             self.t = t0 + tau_star;
+        }
+        self.impact(landing, motion.acceleration(self.t))
+    }
+
+    /// From the start of a sub-step: integrate to `tau` without the landing ends, then the impact.
+    fn integrate_and_impact(
+        &mut self,
+        tau: f64,
+        landing: &[[bool; 2]],
+        motion: &dyn GroundMotion,
+    ) -> Result<(), StepError> {
+        if tau > 0.0 {
+            let t0 = self.t;
+            self.substep(tau, motion, Some(landing))?;
+            self.t = t0 + tau;
         }
         self.impact(landing, motion.acceleration(self.t))
     }
@@ -607,6 +722,14 @@ impl Stepper {
         let n = self.drums.len();
         let kinetic_before = self.kinetic_energy();
         let stages = self.options.n_impacts.max(1);
+        // Warm start: the landing ends close.
+        for k in 0..n {
+            for c in 0..2 {
+                if landing[k][c] {
+                    self.statuses[k].closed[c] = true;
+                }
+            }
+        }
         let eps = self.contact_gap;
         for stage in 1..=stages {
             for k in 0..n {
@@ -636,6 +759,8 @@ impl Stepper {
             self.v_free.copy_from_slice(&self.v);
             self.problem.set(&self.contacts, &self.v_free);
             let report = self.problem.solve(&mut self.statuses)?;
+            self.counters.impact_iterations += report.iterations as u64;
+            self.counters.inexact += report.inexact as u64;
             self.counters.solves += 1;
             self.counters.iterations += report.iterations as u64;
             self.counters.fallbacks += report.fallback as u64;
@@ -650,7 +775,7 @@ impl Stepper {
             let p = self.problem.impulses(k);
             self.carried[k] = [p[0] > 0.0, p[1] > 0.0];
         }
-        self.project(a_g)?;
+        self.project(a_g, true)?;
         self.counters.located_impacts += 1;
         for k in 0..n {
             for c in 0..2 {
@@ -694,12 +819,13 @@ impl Stepper {
             }
         }
         self.drums.joints_into(&self.q_next, &mut self.predicted);
+        // The index set: ends touching their face and ends predicted to close.
         let eps = self.contact_gap;
         for k in 0..n {
             for c in 0..2 {
+                let e = &self.geometry[k].ends[c];
                 self.flags[k][c] = !excluded.is_some_and(|e| e[k][c])
-                    && (self.geometry[k].ends[c].gap <= eps
-                        || self.predicted[k].ends[c].gap <= 0.0);
+                    && (e.gap <= eps || self.predicted[k].ends[c].gap <= 0.0);
             }
         }
         self.fill_contacts();
@@ -708,6 +834,7 @@ impl Stepper {
         self.counters.solves += 1;
         self.counters.iterations += report.iterations as u64;
         self.counters.fallbacks += report.fallback as u64;
+        self.counters.inexact += report.inexact as u64;
         let mut v_new = std::mem::take(&mut self.v_free);
         self.problem.apply(&mut v_new);
         // A column closed and sticking everywhere is at rest: H v = 0 with H invertible.
@@ -744,17 +871,26 @@ impl Stepper {
             ];
         }
         self.t += h;
-        self.project(a1)?;
+        self.update_geometry();
+        if self.watching {
+            if let Some(tau) = self.missed_landing(h) {
+                self.missed_found = Some(tau);
+                return Ok(());
+            }
+        }
+        self.project(a1, true)?;
         self.counters.substeps += 1;
         Ok(())
     }
 
-    /// Geometry at `q`, then, if some carried end is off its face or some end penetrates, the
-    /// projection of `q` in the metric `M` (one linearised step). `a_g` is the ground acceleration
-    /// for the work of the loads on the displacement.
-    fn project(&mut self, a_g: f64) -> Result<(), StepError> {
+    /// Geometry at `q` (unless `fresh`: already computed), then, if some carried end is off its
+    /// face or some end penetrates, the projection of `q` in the metric `M` (one linearised
+    /// step). `a_g` is the ground acceleration for the work of the loads on the displacement.
+    fn project(&mut self, a_g: f64, fresh: bool) -> Result<(), StepError> {
         let n = self.drums.len();
-        self.update_geometry();
+        if !fresh {
+            self.update_geometry();
+        }
         let mut needed = false;
         for k in 0..n {
             let geo = &self.geometry[k];
@@ -816,6 +952,7 @@ impl Stepper {
         let report = self.projection.solve(&mut self.proj_statuses)?;
         self.counters.iterations += report.iterations as u64;
         self.counters.fallbacks += report.fallback as u64;
+        self.counters.inexact += report.inexact as u64;
         self.counters.projections += 1;
         self.projection.apply(&mut self.dq);
         let mut work = 0.0;
@@ -830,6 +967,7 @@ impl Stepper {
         }
         self.energy.ground_work += ground;
         self.energy.projection += work;
+
         self.update_geometry();
         Ok(())
     }
