@@ -96,7 +96,7 @@ fn simultaneous_events_chain() {
         SimulationOptions {
             dt: 1e-4,
             duration: 1.5,
-            model: two.clone(),
+            model: two,
             initial_angles: Some(vec![0.0, 0.153]),
             ..SimulationOptions::default()
         },
@@ -108,7 +108,7 @@ fn simultaneous_events_chain() {
         SimulationOptions {
             dt: 2e-4,
             duration: 3.0,
-            model: two.clone(),
+            model: two,
             ..SimulationOptions::default()
         },
     );
@@ -120,7 +120,7 @@ fn simultaneous_events_chain() {
         &Excitation::record(rec).unwrap(),
         SimulationOptions {
             duration: 25.0,
-            model: two.clone(),
+            model: two,
             ..SimulationOptions::default()
         },
     );
@@ -132,7 +132,7 @@ fn simultaneous_events_chain() {
             &Excitation::pulse(Pulse::full_sine(6.0, 0.6).unwrap()).unwrap(),
             SimulationOptions {
                 duration: 5.0,
-                model: two.clone(),
+                model: two,
                 ..SimulationOptions::default()
             },
         );

@@ -7,12 +7,18 @@
 //!    `t + θh` (the loads do not depend on `q` or `v` in natural coordinates). With `θ = ½` this is
 //!    the mean of a record over the step (linear between samples, steps inside sample intervals)
 //!    and exact for a rectangular pulse whose ends fall on steps;
-//! 2. the contact geometry at the predicted end of the step, `q + h v`, so that the relative
-//!    velocities are held at zero where the contacts will be (a drum pivoting about a corner then
-//!    keeps its pivot to `O(h³)` per step);
+//! 2. the contact geometry at the step's midpoint, `q + θ h v`;
 //! 3. the index set: the joints' ends in contact (gap below a tolerance) or predicted to close;
-//! 4. one frictional contact problem ([`super::friction`]): `v⁺ = v_free + M⁻¹ Hᵀ P`,
-//!    `0 ≤ U⁺_n ⊥ P_n ≥ 0` (zero restitution: inelastic at the corners), Coulomb on each joint;
+//! 4. one frictional contact problem ([`super::friction`]): `v⁺ = v_free + M⁻¹ Hᵀ P`, Moreau's
+//!    impact law `0 ≤ U⁺_n + e U⁻_n ⊥ P_n ≥ 0` and Coulomb on each joint. At an arriving end the
+//!    restitution is zero (inelastic at the corners). At a persistent contact — an end that
+//!    carried an impulse in the last step and is not arriving — it is one: there `U⁻`, taken on
+//!    the rows of the new midpoint, is only the turning of the contact with the drums (the
+//!    centripetal drift of a pivot, `O(h)`), and the law `U⁺ + U⁻ = 0` is the midpoint rule,
+//!    under which the contact does no work and the pivot stays on its face to `O(h³)` per step.
+//!    With zero restitution there (plain Moreau–Jean), every step of rocking about a corner
+//!    pumps `P h |Ḣ v| / 2` into the column: a first-order energy error (0.6 % of the ground work
+//!    on thesis Fig. 14 at dt = 1 ms), which this removes (3e-5 there, second order);
 //! 5. `q⁺ = q + h ((1 − θ) v + θ v⁺)`;
 //! 6. the projection of `q⁺` in the metric `M` onto the contacts: ends that carried an impulse back
 //!    onto the face they touch, penetrating ends out of it (one Newton step of the constraint,
@@ -37,9 +43,10 @@
 //! Energy: with `θ = ½` a step obeys exactly `ΔT + ΔV = W_ground + Σ P·U_mid` (`U_mid` the mean of
 //! the relative velocities before and after, on the step's rows), so the contact work splits into
 //! the normal impulses' work at approaching ends (impacts), the tangential impulses' work
-//! (friction), and the normal impulses' work at ends that were not approaching (the scheme's
-//! `O(h)` error at persistent contacts, whose rows turn with the drums); the projections move `q`
-//! against the loads (`f·Δq`). The last two are the energy errors of the scheme.
+//! (friction), and the normal impulses' work at ends that were not approaching (zero at the
+//! persistent contacts; what is left — an end caught while leaving its face within a step — is
+//! the scheme's error); the projections move `q` against the loads (`f·Δq`). The last two are
+//! the energy errors of the scheme.
 
 use super::drums::{Drums, JointGeometry, DOF_PER_DRUM};
 use super::friction::{ContactProblem, JointContacts, JointStatus, Slip, SolveFailure};
@@ -188,6 +195,7 @@ pub struct Stepper {
     projection_gap: f64,
     carried: Vec<[bool; 2]>,
     flags: Vec<[bool; 2]>,
+    shifts: Vec<[f64; 3]>,
     landing: Vec<[bool; 2]>,
     start_rates: Vec<[[f64; 2]; 2]>,
     missed: Vec<[Option<f64>; 2]>,
@@ -208,6 +216,7 @@ struct Saved {
     energy: EnergyAccounts,
     counters: StepCounters,
     joint_impulses: Vec<[f64; 2]>,
+    carried: Vec<[bool; 2]>,
 }
 
 impl Stepper {
@@ -253,6 +262,7 @@ impl Stepper {
             projection_gap: 1e-10 * size,
             carried: vec![[false; 2]; n],
             flags: vec![[false; 2]; n],
+            shifts: vec![[0.0; 3]; n],
             landing: vec![[false; 2]; n],
             start_rates: vec![[[0.0; 2]; 2]; n],
             missed: vec![[None; 2]; n],
@@ -561,6 +571,7 @@ impl Stepper {
                 energy: EnergyAccounts::default(),
                 counters: StepCounters::default(),
                 joint_impulses: vec![[0.0; 2]; self.joint_impulses.len()],
+                carried: vec![[false; 2]; self.carried.len()],
             })
         });
         saved.t = self.t;
@@ -570,6 +581,7 @@ impl Stepper {
         saved.energy = self.energy;
         saved.counters = self.counters;
         saved.joint_impulses.copy_from_slice(&self.joint_impulses);
+        saved.carried.copy_from_slice(&self.carried);
     }
 
     fn restore(&mut self) {
@@ -581,6 +593,7 @@ impl Stepper {
         self.energy = s.energy;
         self.counters = s.counters;
         self.joint_impulses.copy_from_slice(&s.joint_impulses);
+        self.carried.copy_from_slice(&s.carried);
         self.update_geometry();
     }
 
@@ -688,6 +701,8 @@ impl Stepper {
                 continue;
             }
             let ua = self.problem.rates(k);
+            let sh = self.shifts[k];
+            let ua = [ua[0] - sh[0], ua[1] - sh[1], ua[2] - sh[2]];
             let ub = self.problem.rows_rates(k, v_before);
             let mut approaching = false;
             for c in 0..2 {
@@ -722,6 +737,7 @@ impl Stepper {
         let n = self.drums.len();
         let kinetic_before = self.kinetic_energy();
         let stages = self.options.n_impacts.max(1);
+        self.shifts.iter_mut().for_each(|s| *s = [0.0; 3]);
         // Warm start: the landing ends close.
         for k in 0..n {
             for c in 0..2 {
@@ -805,7 +821,7 @@ impl Stepper {
         let theta = self.options.theta;
         let a = motion.acceleration(self.t + theta * h);
         let a1 = motion.acceleration(self.t + h);
-        // Free velocities and the predicted end of the step.
+        // Free velocities and the geometry of the step's midpoint (θ).
         for j in 0..n {
             let f = self.loads(a, j);
             let inv = [
@@ -815,21 +831,47 @@ impl Stepper {
             ];
             for i in 0..3 {
                 self.v_free[3 * j + i] = self.v[3 * j + i] + h * inv[i] * f[i];
-                self.q_next[3 * j + i] = self.q[3 * j + i] + h * self.v[3 * j + i];
+                self.q_next[3 * j + i] = self.q[3 * j + i] + theta * h * self.v[3 * j + i];
             }
         }
         self.drums.joints_into(&self.q_next, &mut self.predicted);
-        // The index set: ends touching their face and ends predicted to close.
+        // The index set: ends touching their face and ends predicted (linearly) to close.
         let eps = self.contact_gap;
         for k in 0..n {
             for c in 0..2 {
                 let e = &self.geometry[k].ends[c];
-                self.flags[k][c] = !excluded.is_some_and(|e| e[k][c])
-                    && (e.gap <= eps || self.predicted[k].ends[c].gap <= 0.0);
+                let closing = || e.gap + h * self.drums.rates(&e.rows, &self.v, k).0 <= 0.0;
+                self.flags[k][c] =
+                    !excluded.is_some_and(|e| e[k][c]) && (e.gap <= eps || closing());
             }
         }
         self.fill_contacts();
         self.problem.set(&self.contacts, &self.v_free);
+        // Persistent contacts: an end that carried an impulse in the last step and is not
+        // arriving (faster than `v_touch`) obeys Moreau's law with restitution one,
+        // `0 ≤ U⁺ + U⁻ ⊥ P ≥ 0`: its relative velocity before the step, on the rows of the
+        // step's midpoint, is only the turning of the contact with the drums, and the midpoint
+        // rule makes the contact do no work (Acary 2016, the energy of the θ = ½ scheme). A
+        // joint that stuck likewise keeps its mean slip rate at zero. Arrivals are impacts
+        // (restitution zero).
+        for k in 0..n {
+            let ub = self.problem.rows_rates(k, &self.v);
+            let mut shift = [0.0; 3];
+            for c in 0..2 {
+                if self.contacts[k].active[c] && self.carried[k][c] && ub[c] >= -self.v_touch {
+                    shift[c] = ub[c];
+                }
+            }
+            if (shift[0] != 0.0 || shift[1] != 0.0) && self.statuses[k].slip == Slip::Stick {
+                shift[2] = ub[2];
+            }
+            self.shifts[k] = shift;
+            if shift != [0.0; 3] {
+                let b = self.problem.free_rates(k);
+                self.problem
+                    .set_offsets(k, [b[0] + shift[0], b[1] + shift[1], b[2] + shift[2]]);
+            }
+        }
         let report = self.problem.solve(&mut self.statuses)?;
         self.counters.solves += 1;
         self.counters.iterations += report.iterations as u64;
@@ -837,13 +879,16 @@ impl Stepper {
         self.counters.inexact += report.inexact as u64;
         let mut v_new = std::mem::take(&mut self.v_free);
         self.problem.apply(&mut v_new);
-        // A column closed and sticking everywhere is at rest: H v = 0 with H invertible.
+        // A column closed and sticking everywhere comes to rest (H v = 0 with H invertible):
+        // the velocities left by the persistent contacts' law are removed, their energy booked
+        // as impact dissipation.
         let all_stuck = (0..n).all(|k| {
             self.contacts[k].active == [true, true]
                 && self.statuses[k].closed == [true, true]
                 && self.statuses[k].slip == Slip::Stick
         });
         if all_stuck {
+            self.energy.impact += self.drums.kinetic_energy(&v_new);
             v_new.iter_mut().for_each(|x| *x = 0.0);
         }
         // Positions, ground work, contact work.
