@@ -66,7 +66,7 @@ fn main() {
         _ => "null".to_string(),
     };
     println!(
-        "{{\"code\": \"rocking\", \"drums\": {n}, \"width\": {w}, \"height\": {h}, \"pga\": {pga}, \"mu\": {mu}, \"dt\": {dt}, \"t_end\": {:.6}, \"stop\": \"{:?}\", \"overturned\": {}, \"overturned_joint\": {joint}, \"peak_rotation\": {:.9e}, \"peak_rotations\": [{}], \"peak_top_displacement\": {:.9e}, \"residual_slip\": {:.9e}, \"residual_slips\": [{}], \"peak_slip\": {:.9e}, \"energy_error\": {:.3e}, \"energy\": {{\"ground_work\": {:.6e}, \"potential_change\": {:.6e}, \"kinetic_change\": {:.6e}, \"impact\": {:.6e}, \"friction\": {:.6e}, \"persistent_contact\": {:.6e}, \"projection\": {:.6e}}}, \"wall_s\": {wall:.6}}}",
+        "{{\"code\": \"rocking\", \"drums\": {n}, \"width\": {w}, \"height\": {h}, \"pga\": {pga}, \"mu\": {mu}, \"dt\": {dt}, \"t_end\": {:.6}, \"stop\": \"{:?}\", \"overturned\": {}, \"overturned_joint\": {joint}, \"peak_rotation\": {:.9e}, \"peak_rotations\": [{}], \"peak_top_displacement\": {:.9e}, \"residual_slip\": {:.9e}, \"residual_slips\": [{}], \"peak_slip\": {:.9e}, \"energy_error\": {:.3e}, \"energy\": {{\"ground_work\": {:.6e}, \"potential_change\": {:.6e}, \"kinetic_change\": {:.6e}, \"impact\": {:.6e}, \"friction\": {:.6e}, \"persistent_contact\": {:.6e}, \"projection\": {:.6e}}}, \"counters\": \"{:?}\", \"wall_s\": {wall:.6}}}",
         out.t_end,
         out.stop,
         out.overturned,
@@ -84,5 +84,6 @@ fn main() {
         out.energy.accounts.friction,
         out.energy.accounts.persistent_contact,
         out.energy.accounts.projection,
+        out.counters,
     );
 }
