@@ -20,6 +20,8 @@
 pub mod drums;
 pub mod fallback;
 pub mod friction;
+pub mod landing;
 pub mod lemke;
 pub mod moreau;
+pub mod projection;
 pub mod simulation;

@@ -148,20 +148,20 @@ impl From<SolveFailure> for StepError {
 }
 
 /// Landings of open ends faster than this fraction of `g h` are located inside the step.
-const SPLIT_OPEN: f64 = 0.01;
+pub(super) const SPLIT_OPEN: f64 = 0.01;
 /// Ends touching their face and approaching faster than this fraction of `g h` get the impact
 /// law at once.
-const SPLIT_TOUCHING: f64 = 0.1;
+pub(super) const SPLIT_TOUCHING: f64 = 0.1;
 
 /// Most impacts located in one step.
-const MAX_SPLITS: usize = 8;
+pub(super) const MAX_SPLITS: usize = 8;
 
 /// State and workspace of the scheme for one column.
 #[derive(Clone, Debug)]
 pub struct Stepper {
-    drums: Drums,
-    mu: Vec<f64>,
-    options: SchemeOptions,
+    pub(super) drums: Drums,
+    pub(super) mu: Vec<f64>,
+    pub(super) options: SchemeOptions,
     /// Time (s).
     pub t: f64,
     /// Positions `x, y, θ` per drum.
@@ -180,43 +180,43 @@ pub struct Stepper {
     pub counters: StepCounters,
     /// Impacts located in the last step.
     pub impacts: Vec<LocatedImpact>,
-    problem: ContactProblem,
-    projection: ContactProblem,
-    contacts: Vec<JointContacts>,
-    proj_statuses: Vec<JointStatus>,
-    predicted: Vec<JointGeometry>,
-    v_free: Vec<f64>,
-    q_next: Vec<f64>,
-    dq: Vec<f64>,
-    saved: Option<Box<Saved>>,
+    pub(super) problem: ContactProblem,
+    pub(super) projection: ContactProblem,
+    pub(super) contacts: Vec<JointContacts>,
+    pub(super) proj_statuses: Vec<JointStatus>,
+    pub(super) predicted: Vec<JointGeometry>,
+    pub(super) v_free: Vec<f64>,
+    pub(super) q_next: Vec<f64>,
+    pub(super) dq: Vec<f64>,
+    pub(super) saved: Option<Box<Saved>>,
     /// Contact tolerance on gaps (m).
-    contact_gap: f64,
+    pub(super) contact_gap: f64,
     /// Projection tolerance on gaps (m).
-    projection_gap: f64,
-    carried: Vec<[bool; 2]>,
-    flags: Vec<[bool; 2]>,
-    shifts: Vec<[f64; 3]>,
-    landing: Vec<[bool; 2]>,
-    start_rates: Vec<[[f64; 2]; 2]>,
-    missed: Vec<[Option<f64>; 2]>,
-    watching: bool,
-    missed_found: Option<f64>,
+    pub(super) projection_gap: f64,
+    pub(super) carried: Vec<[bool; 2]>,
+    pub(super) flags: Vec<[bool; 2]>,
+    pub(super) shifts: Vec<[f64; 3]>,
+    pub(super) landing: Vec<[bool; 2]>,
+    pub(super) start_rates: Vec<[[f64; 2]; 2]>,
+    pub(super) missed: Vec<[Option<f64>; 2]>,
+    pub(super) watching: bool,
+    pub(super) missed_found: Option<f64>,
     /// Approach speed above which a landing is located (m/s): a tenth of what gravity gives in a
     /// step.
-    v_split: f64,
-    v_touch: f64,
+    pub(super) v_split: f64,
+    pub(super) v_touch: f64,
 }
 
 #[derive(Clone, Debug)]
-struct Saved {
-    t: f64,
-    q: Vec<f64>,
-    v: Vec<f64>,
-    statuses: Vec<JointStatus>,
-    energy: EnergyAccounts,
-    counters: StepCounters,
-    joint_impulses: Vec<[f64; 2]>,
-    carried: Vec<[bool; 2]>,
+pub(super) struct Saved {
+    pub(super) t: f64,
+    pub(super) q: Vec<f64>,
+    pub(super) v: Vec<f64>,
+    pub(super) statuses: Vec<JointStatus>,
+    pub(super) energy: EnergyAccounts,
+    pub(super) counters: StepCounters,
+    pub(super) joint_impulses: Vec<[f64; 2]>,
+    pub(super) carried: Vec<[bool; 2]>,
 }
 
 impl Stepper {
@@ -315,7 +315,7 @@ impl Stepper {
         }
     }
 
-    fn update_geometry(&mut self) {
+    pub(super) fn update_geometry(&mut self) {
         self.drums.joints_into(&self.q, &mut self.geometry);
     }
 
@@ -329,7 +329,7 @@ impl Stepper {
         self.drums.potential_energy(&self.q, self.options.gravity)
     }
 
-    fn at_rest(&self) -> bool {
+    pub(super) fn at_rest(&self) -> bool {
         self.v.iter().all(|&x| x == 0.0)
             && self
                 .statuses
@@ -344,7 +344,7 @@ impl Stepper {
     /// hold it (statics of the part above each joint, top down) are admissible. This is the
     /// solution of the step's contact problem then (the Jacobian of a closed, sticking column is
     /// square and invertible, so the impulses are unique). Returns whether it applied.
-    fn rest_step(&mut self, h: f64, a_theta: f64) -> bool {
+    pub(super) fn rest_step(&mut self, h: f64, a_theta: f64) -> bool {
         let n = self.drums.len();
         let g = self.options.gravity;
         // Suffix sums of the loads' impulse on the part above each joint and of its moment.
@@ -440,242 +440,14 @@ impl Stepper {
         }
     }
 
-    /// Gaps and normal rates of every end at the start of a sub-step (for [`Self::missed_landing`]).
-    fn record_start_rates(&mut self) {
-        for k in 0..self.drums.len() {
-            for c in 0..2 {
-                let e = &self.geometry[k].ends[c];
-                let (un, _) = self.drums.rates(&e.rows, &self.v, k);
-                self.start_rates[k][c] = [e.gap, un];
-            }
-        }
-    }
-
-    /// Root in `(0, h]` of the cubic Hermite interpolant of a gap going from `g0` (rate `u0`) to
-    /// `g1 ≤ 0` (rate `u1`) over `h`.
-    fn hermite_root(g0: f64, u0: f64, g1: f64, u1: f64, h: f64) -> f64 {
-        let p = |s: f64| {
-            let x = s / h;
-            let (x2, x3) = (x * x, x * x * x);
-            (2.0 * x3 - 3.0 * x2 + 1.0) * g0
-                + (x3 - 2.0 * x2 + x) * h * u0
-                + (-2.0 * x3 + 3.0 * x2) * g1
-                + (x3 - x2) * h * u1
-        };
-        let (mut lo, mut hi) = (0.0, h);
-        for _ in 0..60 {
-            let mid = 0.5 * (lo + hi);
-            if p(mid) > 0.0 {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
-        }
-        hi
-    }
-
-    /// Ends open at the start of the last sub-step of length `h` that ended inside their face
-    /// (deeper than a tenth of what the split speed covers in the step), arriving faster than the
-    /// split speed: their landing instants (Hermite) into `self.missed`, the first one returned.
-    fn missed_landing(&mut self, h: f64) -> Option<f64> {
-        let deep = 0.1 * self.v_split * h;
-        let mut best: Option<f64> = None;
-        for k in 0..self.drums.len() {
-            for c in 0..2 {
-                let tau = self.missed_time(k, c, h, deep);
-                self.missed[k][c] = tau;
-                if let Some(tau) = tau {
-                    if best.map_or(true, |b| tau < b) {
-                        best = Some(tau);
-                    }
-                }
-            }
-        }
-        best
-    }
-
-    fn missed_time(&self, k: usize, c: usize, h: f64, deep: f64) -> Option<f64> {
-        let [g0, u0] = self.start_rates[k][c];
-        // Only ends that the sub-step left free (its index set is still in `flags`).
-        if self.flags[k][c] {
-            return None;
-        }
-        let e = &self.geometry[k].ends[c];
-        if e.gap >= -deep {
-            return None;
-        }
-        let (u1, _) = self.drums.rates(&e.rows, &self.v, k);
-        if u1 >= -self.v_split {
-            return None;
-        }
-        Some(Self::hermite_root(g0, u0, e.gap, u1, h))
-    }
-
-    /// The missed landings within `1e-9` of the step of the first (recorded by
-    /// [`Self::missed_landing`] before the restore).
-    fn missed_set(&self, tau: f64, h: f64, out: &mut [[bool; 2]]) {
-        for k in 0..self.drums.len() {
-            for c in 0..2 {
-                out[k][c] = self.missed[k][c].is_some_and(|t| t <= tau + 1e-9 * h);
-            }
-        }
-    }
-
-    /// Linear landing time of end `c` of joint `k` if it approaches its face faster than
-    /// `v_split`: `gap / |U|`, or zero for an end already touching (its impact is due now).
-    fn landing_time(&self, k: usize, c: usize, v_split: f64) -> Option<f64> {
-        let e = &self.geometry[k].ends[c];
-        let (un, _) = self.drums.rates(&e.rows, &self.v, k);
-        if e.gap <= self.contact_gap {
-            (un < -self.v_touch).then_some(0.0)
-        } else {
-            (un < -v_split).then(|| e.gap / -un)
-        }
-    }
-
-    /// The first fast landing within `remaining`: `(τ, (joint, end))` by the linear prediction.
-    fn next_landing(&self, remaining: f64) -> Option<(f64, (usize, usize))> {
-        let mut best: Option<(f64, (usize, usize))> = None;
-        for k in 0..self.drums.len() {
-            for c in 0..2 {
-                if let Some(tau) = self.landing_time(k, c, self.v_split) {
-                    if tau < remaining && best.map_or(true, |(b, _)| tau < b) {
-                        best = Some((tau, (k, c)));
-                    }
-                }
-            }
-        }
-        best
-    }
-
-    /// Ends landing at (nearly) the time `tau`: all with linear landing time within `1e-9` of
-    /// the step of the first.
-    fn landing_set(&self, tau: f64, remaining: f64, out: &mut [[bool; 2]]) {
-        for k in 0..self.drums.len() {
-            out[k] = [false; 2];
-            for c in 0..2 {
-                if let Some(t) = self.landing_time(k, c, self.v_split) {
-                    out[k][c] = t <= tau + 1e-9 * remaining;
-                }
-            }
-        }
-    }
-
-    fn save(&mut self) {
-        let saved = self.saved.get_or_insert_with(|| {
-            Box::new(Saved {
-                t: 0.0,
-                q: vec![0.0; self.q.len()],
-                v: vec![0.0; self.v.len()],
-                statuses: vec![JointStatus::default(); self.statuses.len()],
-                energy: EnergyAccounts::default(),
-                counters: StepCounters::default(),
-                joint_impulses: vec![[0.0; 2]; self.joint_impulses.len()],
-                carried: vec![[false; 2]; self.carried.len()],
-            })
-        });
-        saved.t = self.t;
-        saved.q.copy_from_slice(&self.q);
-        saved.v.copy_from_slice(&self.v);
-        saved.statuses.copy_from_slice(&self.statuses);
-        saved.energy = self.energy;
-        saved.counters = self.counters;
-        saved.joint_impulses.copy_from_slice(&self.joint_impulses);
-        saved.carried.copy_from_slice(&self.carried);
-    }
-
-    fn restore(&mut self) {
-        let s = self.saved.as_ref().expect("saved state");
-        self.t = s.t;
-        self.q.copy_from_slice(&s.q);
-        self.v.copy_from_slice(&s.v);
-        self.statuses.copy_from_slice(&s.statuses);
-        self.energy = s.energy;
-        self.counters = s.counters;
-        self.joint_impulses.copy_from_slice(&s.joint_impulses);
-        self.carried.copy_from_slice(&s.carried);
-        self.update_geometry();
-    }
-
-    /// Integrates up to the first landing (trial, Hermite root, redo) and applies the impact.
-    fn locate_and_impact(
-        &mut self,
-        tau: f64,
-        remaining: f64,
-        motion: &dyn GroundMotion,
-    ) -> Result<(), StepError> {
-        let mut landing = std::mem::take(&mut self.landing);
-        self.landing_set(tau, remaining, &mut landing);
-        let result = self.locate_and_impact_set(tau, &landing, motion);
-        self.landing = landing;
-        result
-    }
-
-    fn locate_and_impact_set(
-        &mut self,
-        tau: f64,
-        landing: &[[bool; 2]],
-        motion: &dyn GroundMotion,
-    ) -> Result<(), StepError> {
-        let n = self.drums.len();
-        // The end that decides the instant: the first one.
-        let (k0, c0) = (0..n)
-            .flat_map(|k| (0..2).map(move |c| (k, c)))
-            .find(|&(k, c)| landing[k][c])
-            .expect("a landing end");
-        if tau <= 0.0 {
-            return self.impact(landing, motion.acceleration(self.t));
-        }
-        let g0 = self.geometry[k0].ends[c0].gap;
-        let (u0, _) = self
-            .drums
-            .rates(&self.geometry[k0].ends[c0].rows, &self.v, k0);
-        self.save();
-        let t0 = self.t;
-        self.substep(tau, motion, Some(landing))?;
-        let g1 = self.geometry[k0].ends[c0].gap;
-        let (u1, _) = self
-            .drums
-            .rates(&self.geometry[k0].ends[c0].rows, &self.v, k0);
-        self.t = t0 + tau;
-        if g1 > self.contact_gap {
-            // Not there yet (it slowed down): keep the sub-step; the next round looks again.
-            return Ok(());
-        }
-        let tau_star = Self::hermite_root(g0, u0, g1, u1, tau);
-        // Redo the sub-step to the root unless the trial already ended on the face (to the
-        // contact tolerance).
-        if g1 < -self.contact_gap && (tau_star - tau).abs() > 1e-12 * tau {
-            self.restore();
-            self.substep(tau_star, motion, Some(landing))?;
-            self.t = t0 + tau_star;
-        }
-        self.impact(landing, motion.acceleration(self.t))
-    }
-
-    /// From the start of a sub-step: integrate to `tau` without the landing ends, then the impact.
-    fn integrate_and_impact(
-        &mut self,
-        tau: f64,
-        landing: &[[bool; 2]],
-        motion: &dyn GroundMotion,
-    ) -> Result<(), StepError> {
-        if tau > 0.0 {
-            let t0 = self.t;
-            self.substep(tau, motion, Some(landing))?;
-            self.t = t0 + tau;
-        }
-        self.impact(landing, motion.acceleration(self.t))
-    }
-
-    fn loads(&self, a_g: f64, j: usize) -> [f64; 3] {
+    pub(super) fn loads(&self, a_g: f64, j: usize) -> [f64; 3] {
         let m = self.drums.mass(j);
         [-m * a_g, -m * self.options.gravity, 0.0]
     }
 
     /// Fills `contacts` for the ends flagged in `self.flags` with the rows of the predicted
     /// geometry.
-    fn fill_contacts(&mut self) {
+    pub(super) fn fill_contacts(&mut self) {
         for k in 0..self.drums.len() {
             let geo = &self.predicted[k];
             self.contacts[k] = JointContacts {
@@ -692,7 +464,7 @@ impl Stepper {
     /// impact dissipation; in a step, the normal work at approaching ends and the tangential work
     /// of a sticking joint with an approaching end is, the tangential work of a slipping joint is
     /// friction, the rest is the scheme's work at persistent contacts.
-    fn account_contact_work(&mut self, v_before: &[f64], impact: bool) {
+    pub(super) fn account_contact_work(&mut self, v_before: &[f64], impact: bool) {
         let n = self.drums.len();
         for k in 0..n {
             let p = self.problem.impulses(k);
@@ -729,89 +501,9 @@ impl Stepper {
         }
     }
 
-    /// The impact law at the current instant: the ends in contact and the `landing` ones (per
-    /// joint, right and left), with the bump stages of the thesis's consecutive impacts for
-    /// rocking joints; `a_g` is the ground acceleration now (for the work of the loads on the
-    /// projection that follows). Used by the steps; public for the models' comparisons.
-    pub fn impact(&mut self, landing: &[[bool; 2]], a_g: f64) -> Result<(), StepError> {
-        let n = self.drums.len();
-        let kinetic_before = self.kinetic_energy();
-        let stages = self.options.n_impacts.max(1);
-        self.shifts.iter_mut().for_each(|s| *s = [0.0; 3]);
-        // Warm start: the landing ends close.
-        for k in 0..n {
-            for c in 0..2 {
-                if landing[k][c] {
-                    self.statuses[k].closed[c] = true;
-                }
-            }
-        }
-        let eps = self.contact_gap;
-        for stage in 1..=stages {
-            for k in 0..n {
-                let geo = self.geometry[k];
-                let mut jc = JointContacts {
-                    active: [false; 2],
-                    bilateral: [false; 2],
-                    rows: [geo.ends[0].rows, geo.ends[1].rows],
-                    mu: self.mu[k],
-                };
-                for c in 0..2 {
-                    jc.active[c] = landing[k][c] || geo.ends[c].gap <= eps;
-                }
-                for c in 0..2 {
-                    let p = 1 - c;
-                    let rocking = landing[k][c] && !landing[k][p] && geo.ends[p].gap <= eps;
-                    if rocking && stage < stages {
-                        // A bump at the fraction stage/stages from the pivot towards the corner.
-                        let lam = stage as f64 / stages as f64;
-                        let (a, b) = (geo.ends[p].point, geo.ends[c].point);
-                        let r = [a[0] + lam * (b[0] - a[0]), a[1] + lam * (b[1] - a[1])];
-                        jc.rows[c] = self.drums.rows_at(&self.q, k, r, geo.ends[c].normal);
-                    }
-                }
-                self.contacts[k] = jc;
-            }
-            self.v_free.copy_from_slice(&self.v);
-            self.problem.set(&self.contacts, &self.v_free);
-            let report = self.problem.solve(&mut self.statuses)?;
-            self.counters.impact_iterations += report.iterations as u64;
-            self.counters.inexact += report.inexact as u64;
-            self.counters.solves += 1;
-            self.counters.iterations += report.iterations as u64;
-            self.counters.fallbacks += report.fallback as u64;
-            let mut v = std::mem::take(&mut self.v_free);
-            self.problem.apply(&mut v);
-            let before = std::mem::replace(&mut self.v, v);
-            self.account_contact_work(&before, true);
-            self.v_free = before;
-        }
-        // Landed ends that hold an impulse are put back onto their faces.
-        for k in 0..n {
-            let p = self.problem.impulses(k);
-            self.carried[k] = [p[0] > 0.0, p[1] > 0.0];
-        }
-        self.project(a_g, true)?;
-        self.counters.located_impacts += 1;
-        for k in 0..n {
-            for c in 0..2 {
-                if landing[k][c] {
-                    self.impacts.push(LocatedImpact {
-                        t: self.t,
-                        joint: k,
-                        end: c,
-                        kinetic_before,
-                        kinetic_after: self.kinetic_energy(),
-                    });
-                }
-            }
-        }
-        Ok(())
-    }
-
     /// One Moreau–Jean sub-step of length `h`; `excluded` ends are kept out of the index set (the
     /// landing ends before their located impact).
-    fn substep(
+    pub(super) fn substep(
         &mut self,
         h: f64,
         motion: &dyn GroundMotion,
@@ -925,95 +617,6 @@ impl Stepper {
         }
         self.project(a1, true)?;
         self.counters.substeps += 1;
-        Ok(())
-    }
-
-    /// Geometry at `q` (unless `fresh`: already computed), then, if some carried end is off its
-    /// face or some end penetrates, the projection of `q` in the metric `M` (one linearised
-    /// step). `a_g` is the ground acceleration for the work of the loads on the displacement.
-    fn project(&mut self, a_g: f64, fresh: bool) -> Result<(), StepError> {
-        let n = self.drums.len();
-        if !fresh {
-            self.update_geometry();
-        }
-        let mut needed = false;
-        for k in 0..n {
-            let geo = &self.geometry[k];
-            if geo.overlap <= 0.0 {
-                return Err(StepError::SlidOff(k));
-            }
-            for c in 0..2 {
-                let g = geo.ends[c].gap;
-                if (self.carried[k][c] && g.abs() > self.projection_gap) || g < -self.projection_gap
-                {
-                    needed = true;
-                }
-            }
-        }
-        if !needed {
-            return Ok(());
-        }
-        for k in 0..n {
-            let geo = &self.geometry[k];
-            let mut jc = JointContacts {
-                active: [false; 2],
-                bilateral: [false; 2],
-                rows: [geo.ends[0].rows, geo.ends[1].rows],
-                mu: 0.0,
-            };
-            for c in 0..2 {
-                let g = geo.ends[c].gap;
-                if self.carried[k][c] {
-                    jc.active[c] = true;
-                    jc.bilateral[c] = true;
-                } else if g < 0.0 {
-                    jc.active[c] = true;
-                }
-            }
-            self.contacts[k] = jc;
-            self.proj_statuses[k] = JointStatus {
-                closed: jc.active,
-                ..JointStatus::default()
-            };
-        }
-        self.dq.iter_mut().for_each(|x| *x = 0.0);
-        self.projection.set(&self.contacts, &self.dq);
-        for k in 0..n {
-            let geo = &self.geometry[k];
-            let gaps = [
-                if self.contacts[k].active[0] {
-                    geo.ends[0].gap
-                } else {
-                    0.0
-                },
-                if self.contacts[k].active[1] {
-                    geo.ends[1].gap
-                } else {
-                    0.0
-                },
-            ];
-            self.projection.set_offsets(k, [gaps[0], gaps[1], 0.0]);
-        }
-        let report = self.projection.solve(&mut self.proj_statuses)?;
-        self.counters.iterations += report.iterations as u64;
-        self.counters.fallbacks += report.fallback as u64;
-        self.counters.inexact += report.inexact as u64;
-        self.counters.projections += 1;
-        self.projection.apply(&mut self.dq);
-        let mut work = 0.0;
-        let mut ground = 0.0;
-        for j in 0..n {
-            let f = self.loads(a_g, j);
-            for i in 0..3 {
-                self.q[3 * j + i] += self.dq[3 * j + i];
-                work += f[i] * self.dq[3 * j + i];
-            }
-            ground += f[0] * self.dq[3 * j];
-        }
-        self.energy.ground_work += ground;
-        self.energy.projection += work;
-
-        self.update_geometry();
         Ok(())
     }
 }
