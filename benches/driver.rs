@@ -9,7 +9,9 @@
 use std::time::Instant;
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
-use rocking::driver::{overturns, simulate, Recording, SimulationOptions};
+use rocking::driver::{
+    overturns, simulate, Recording, SimulationOptions, SteppingOptions, StoppingOptions,
+};
 use rocking::ground::records::{synthetic_record, Record, SYNTHETIC_SEED};
 use rocking::ground::{FnMotion, GroundMotion};
 use rocking::model::column::Column;
@@ -23,9 +25,15 @@ fn synthetic(t: f64) -> f64 {
 
 fn options() -> SimulationOptions {
     SimulationOptions {
-        dt: 1e-3,
-        duration: 30.0,
-        record: Recording::NONE,
+        stepping: SteppingOptions {
+            dt: 1e-3,
+            ..SteppingOptions::default()
+        },
+        stopping: StoppingOptions {
+            duration: 30.0,
+            ..StoppingOptions::default()
+        },
+        recording: Recording::NONE,
         ..SimulationOptions::default()
     }
 }
@@ -39,7 +47,7 @@ fn report(name: &str, column: &Column, motion: &dyn GroundMotion) {
         black_box(simulate(column, motion, &opts, None).unwrap());
     }
     let per_run = start.elapsed().as_secs_f64() / runs as f64;
-    let steps = out.t_end / opts.dt;
+    let steps = out.t_end / opts.stepping.dt;
     eprintln!(
         "{name}: {:.3} ms per 30 s record, {:.1} ns per step ({} impacts, stop {:?} at {:.2} s)",
         1e3 * per_run,

@@ -10,6 +10,7 @@
 #include <math.h>
 #include <stdio.h>
 #include "rocking.h"
+#include "rocking_samples.h" /* the inputs and the thesis's numbers, from src/samples.rs */
 
 static int check(const char *what, double got, double want, double tol) {
     int ok = fabs(got - want) <= tol;
@@ -18,11 +19,11 @@ static int check(const char *what, double got, double want, double tol) {
 }
 
 static int impact(uint32_t n_impacts, double v0, double v1, double loss) {
-    double width[2] = {0.1, 0.1}, height[2] = {0.3, 0.3}, mass_kg[2] = {15.0, 15.0};
-    double mass[16];
-    int8_t status[2] = {0, +1};              /* lower closed, upper open about its left corner */
-    double velocity[4] = {0.0, 0.0, 0.0, -1.0}; /* phi_hat_1 closing at 1 rad/s */
-    RockingOptions options = {n_impacts, 0, 1e-12};
+    double width[2] = SAMPLE_IMPACT_WIDTH, height[2] = SAMPLE_IMPACT_HEIGHT;
+    double mass_kg[2] = SAMPLE_IMPACT_BLOCK_MASS, mass[16];
+    int8_t status[2] = SAMPLE_IMPACT_STATUS;      /* lower closed, upper open about its left corner */
+    double velocity[4] = SAMPLE_IMPACT_VELOCITY;  /* phi_hat_1 closing at 1 rad/s */
+    RockingOptions options = {n_impacts, ROCKING_SOLVER_AUTO, 1e-12};
     RockingReport report;
     int failures = 0;
     int32_t code = rocking_column_mass_matrix(2, width, height, mass_kg, NULL, NULL, NULL, 0.0, 9.81, mass, NULL);
@@ -30,8 +31,8 @@ static int impact(uint32_t n_impacts, double v0, double v1, double loss) {
         fprintf(stderr, "mass matrix: %s (%s)\n", rocking_error_message(code), rocking_last_error_message());
         return 1;
     }
-    failures += check("M[0][2] (thesis Eq. 10)", mass[2], 3.550, 5e-4);
-    code = rocking_impact_model(2, mass, status, velocity, 1, &options, &report);
+    failures += check("M[0][2] (thesis Eq. 10)", mass[2], SAMPLE_EQ10_M02, 5e-4);
+    code = rocking_impact_model(2, mass, status, velocity, SAMPLE_IMPACT_CLOSING, &options, &report);
     if (code != ROCKING_OK) {
         fprintf(stderr, "impact: %s (%s)\n", rocking_error_message(code), rocking_last_error_message());
         return 1;
@@ -54,8 +55,8 @@ int main(void) {
         fprintf(stderr, "library ABI does not match the header\n");
         return 1;
     }
-    failures += impact(1, -0.1079, -0.5965, 25.6);
-    failures += impact(2, -0.0539, -0.7983, 13.9);
+    failures += impact(1, SAMPLE_IMPACT1_RATE0, SAMPLE_IMPACT1_RATE1, SAMPLE_IMPACT1_LOSS);
+    failures += impact(2, SAMPLE_IMPACT2_RATE0, SAMPLE_IMPACT2_RATE1, SAMPLE_IMPACT2_LOSS);
     /* A bad call answers with a code and a message, and writes nothing. */
     if (rocking_impact_model(2, dummy_mass, bad_status, dummy_v, 0, NULL, NULL) != ROCKING_ERR_INVALID_CLOSING_INTERFACE) {
         fprintf(stderr, "expected ROCKING_ERR_INVALID_CLOSING_INTERFACE\n");

@@ -61,8 +61,25 @@ pub fn finite(field: impl Into<String>, v: f64) -> Result<f64, InvalidValue> {
 
 /// Every value of `values` finite and `> 0` (the field is reported as `field[i]`).
 pub fn all_positive(field: &str, values: &[f64]) -> Result<(), InvalidValue> {
+    each(field, values, positive)
+}
+
+/// Every value of `values` finite (the field is reported as `field[i]`).
+pub fn all_finite(field: &str, values: &[f64]) -> Result<(), InvalidValue> {
+    each(field, values, finite)
+}
+
+/// `check` on every value; the field of an error is `field[i]`, formatted only on failure.
+fn each(
+    field: &str,
+    values: &[f64],
+    check: fn(&'static str, f64) -> Result<f64, InvalidValue>,
+) -> Result<(), InvalidValue> {
     for (i, &v) in values.iter().enumerate() {
-        positive(format!("{field}[{i}]"), v)?;
+        check("", v).map_err(|e| InvalidValue {
+            field: format!("{field}[{i}]"),
+            ..e
+        })?;
     }
     Ok(())
 }
@@ -85,5 +102,14 @@ mod tests {
         assert!(finite("x", f64::INFINITY).is_err());
         let e = all_positive("widths", &[1.0, -2.0]).unwrap_err();
         assert_eq!(e.field, "widths[1]");
+        assert_eq!(
+            e.to_string(),
+            "widths[1] = -2.0: must be a finite number greater than zero"
+        );
+        assert!(all_finite("samples", &[0.0, -1.0]).is_ok());
+        assert_eq!(
+            all_finite("samples", &[0.0, f64::NAN]).unwrap_err().field,
+            "samples[1]"
+        );
     }
 }

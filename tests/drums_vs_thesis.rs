@@ -35,20 +35,18 @@ fn compare(
     initial: Option<Vec<f64>>,
     exact: bool,
 ) -> Compared {
-    let so = SimulationOptions {
-        dt,
-        duration,
-        initial_angles: initial.clone(),
-        exact_velocity_terms: exact,
-        model: ModelOptions {
-            n_impacts,
-            ..ModelOptions::default()
-        },
-        record: Recording {
-            history_every: None,
-            events: true,
-        },
-        ..SimulationOptions::default()
+    let mut so = SimulationOptions::default();
+    so.stepping.dt = dt;
+    so.stopping.duration = duration;
+    so.initial.angles = initial.clone();
+    so.physics.exact_velocity_terms = exact;
+    so.physics.model = ModelOptions {
+        n_impacts,
+        ..ModelOptions::default()
+    };
+    so.recording = Recording {
+        history_every: None,
+        events: true,
     };
     let ed = simulate(column, motion, &so, None).unwrap();
     let ed_events: Vec<f64> = ed

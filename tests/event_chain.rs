@@ -44,7 +44,7 @@ fn broken_chains(events: &[Event]) -> Vec<(usize, String)> {
 
 fn run(name: &str, column: &Column, motion: &dyn GroundMotion, opts: SimulationOptions) -> usize {
     let opts = SimulationOptions {
-        record: Recording {
+        recording: Recording {
             history_every: None,
             events: true,
         },
@@ -76,15 +76,11 @@ fn simultaneous_events_chain() {
     // The bundled scenes.
     let col = Column::new(vec![Block::rectangle(1.0, 4.0, 10000.0)]).unwrap();
     let m = Excitation::pulse(Pulse::half_sine(6.0, 0.8).unwrap()).unwrap();
-    broken += run(
-        "single block, half sine",
-        &col,
-        &m,
-        SimulationOptions {
-            duration: 8.0,
-            ..SimulationOptions::default()
-        },
-    );
+    broken += run("single block, half sine", &col, &m, {
+        let mut o = SimulationOptions::default();
+        o.stopping.duration = 8.0;
+        o
+    });
     let granite = |h: f64| Block {
         contact_width: Some(0.096),
         ..Block::rectangle(0.1, h, 16.2)
@@ -93,23 +89,25 @@ fn simultaneous_events_chain() {
         "thesis 4.2",
         &Column::new(vec![granite(0.3); 2]).unwrap(),
         &NoMotion,
-        SimulationOptions {
-            dt: 1e-4,
-            duration: 1.5,
-            model: two,
-            initial_angles: Some(vec![0.0, 0.153]),
-            ..SimulationOptions::default()
+        {
+            let mut o = SimulationOptions::default();
+            o.stepping.dt = 1e-4;
+            o.stopping.duration = 1.5;
+            o.physics.model = two;
+            o.initial.angles = Some(vec![0.0, 0.153]);
+            o
         },
     );
     broken += run(
         "thesis 4.3",
         &Column::new(vec![granite(0.2); 3]).unwrap(),
         &Excitation::pulse(Pulse::full_sine(-2.467, 0.6).unwrap()).unwrap(),
-        SimulationOptions {
-            dt: 2e-4,
-            duration: 3.0,
-            model: two,
-            ..SimulationOptions::default()
+        {
+            let mut o = SimulationOptions::default();
+            o.stepping.dt = 2e-4;
+            o.stopping.duration = 3.0;
+            o.physics.model = two;
+            o
         },
     );
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/records/synthetic.AT2");
@@ -118,10 +116,11 @@ fn simultaneous_events_chain() {
         "three drums, synthetic record",
         &Column::new(vec![Block::rectangle(0.6, 1.2, 1100.0); 3]).unwrap(),
         &Excitation::record(rec).unwrap(),
-        SimulationOptions {
-            duration: 25.0,
-            model: two,
-            ..SimulationOptions::default()
+        {
+            let mut o = SimulationOptions::default();
+            o.stopping.duration = 25.0;
+            o.physics.model = two;
+            o
         },
     );
     // Extreme scenes: ten drums H/B = 1.2 under a pulse, thirty squat drums.
@@ -130,10 +129,11 @@ fn simultaneous_events_chain() {
             &format!("{n} drums {w} × {h}, full sine"),
             &Column::new(vec![Block::rectangle(w, h, 2500.0 * w * h); n]).unwrap(),
             &Excitation::pulse(Pulse::full_sine(6.0, 0.6).unwrap()).unwrap(),
-            SimulationOptions {
-                duration: 5.0,
-                model: two,
-                ..SimulationOptions::default()
+            {
+                let mut o = SimulationOptions::default();
+                o.stopping.duration = 5.0;
+                o.physics.model = two;
+                o
             },
         );
     }
@@ -145,10 +145,11 @@ fn simultaneous_events_chain() {
             "ten 1 × 1 m drums, MUL009 at 4.9 m/s²",
             &Column::new(vec![Block::rectangle(1.0, 1.0, 2500.0); 10]).unwrap(),
             &Excitation::record(rec.scaled_to_pga(4.9).unwrap()).unwrap(),
-            SimulationOptions {
-                duration: 40.0,
-                model: two,
-                ..SimulationOptions::default()
+            {
+                let mut o = SimulationOptions::default();
+                o.stopping.duration = 40.0;
+                o.physics.model = two;
+                o
             },
         );
     }

@@ -6,7 +6,9 @@
 
 use std::time::Instant;
 
-use rocking::driver::{simulate, Outcome, Recording, SimulationOptions};
+use rocking::driver::{
+    simulate, Outcome, Recording, SimulationOptions, SteppingOptions, StoppingOptions,
+};
 use rocking::ground::{FnMotion, NoMotion};
 use rocking::model::column::{Block, Column, GRAVITY};
 use rocking::model::single_block;
@@ -14,9 +16,15 @@ use rocking::{impact_model, opening_model, ModelOptions, Solver, Status};
 
 fn options(dt: f64, duration: f64) -> SimulationOptions {
     SimulationOptions {
-        dt,
-        duration,
-        record: Recording {
+        stepping: SteppingOptions {
+            dt,
+            ..SteppingOptions::default()
+        },
+        stopping: StoppingOptions {
+            duration,
+            ..StoppingOptions::default()
+        },
+        recording: Recording {
             history_every: None,
             events: true,
         },
@@ -73,7 +81,7 @@ fn slenderness_from_1_to_100() {
         let column = Column::new(vec![Block::rectangle(w, h, 1000.0)]).unwrap();
         let delta = single_block::slenderness_angle(w, h);
         let mut opts = options(1e-4 * h_over_b.sqrt(), 20.0);
-        opts.initial_angles = Some(vec![0.5 * delta]);
+        opts.initial.angles = Some(vec![0.5 * delta]);
         let o = timed(&format!("free rocking H/B = {h_over_b}"), || {
             simulate(&column, &NoMotion, &opts, None).unwrap()
         });
@@ -117,7 +125,7 @@ fn sizes_from_5_cm_to_1000_m() {
         let column = Column::new(vec![Block::rectangle(w, h, 2400.0 * w * h)]).unwrap();
         let delta = single_block::slenderness_angle(w, h);
         let mut opts = options(1e-4 * r.sqrt(), 0.5 * r.sqrt());
-        opts.initial_angles = Some(vec![0.5 * delta]);
+        opts.initial.angles = Some(vec![0.5 * delta]);
         let o = timed(&format!("free rocking R = {r} m"), || {
             simulate(&column, &NoMotion, &opts, None).unwrap()
         });
@@ -153,7 +161,7 @@ fn columns_of_1_to_100_blocks() {
             1.0,
         );
         let mut opts = options(1e-3, 6.0);
-        opts.friction = f64::INFINITY;
+        opts.physics.friction = f64::INFINITY;
         let o = timed(&format!("{n}-block column, full sine 3 a_min"), || {
             simulate(&column, &motion, &opts, None).unwrap()
         });
@@ -168,7 +176,7 @@ fn columns_of_1_to_100_blocks() {
         // Squat drums (H/B = 0.4 for 30 blocks: Housner μ < 0) close at every impact and are
         // opened again by the next step of the ground: events pile up, and the cap ends the run
         // with a stated reason instead of a hang.
-        let cap = opts.max_events_per_second * o.t_end.max(1.0);
+        let cap = opts.stopping.max_events_per_second * o.t_end.max(1.0);
         assert!(
             o.events.len() as f64 <= cap + 2.0,
             "{n} blocks: {} events over the cap {cap}",
@@ -247,8 +255,8 @@ fn impulse_limit_eq_17() {
             let a = factor * i_cr / tp;
             let motion = FnMotion(move |t: f64| if t < tp { a } else { 0.0 }, tp);
             let mut opts = options(1e-5, 4.0);
-            opts.friction = f64::INFINITY;
-            opts.continue_until_fallen = true;
+            opts.physics.friction = f64::INFINITY;
+            opts.stopping.continue_until_fallen = true;
             let o = timed(&format!("impulse {factor} I_cr, H/B = {h_over_b}"), || {
                 simulate(&column, &motion, &opts, None).unwrap()
             });

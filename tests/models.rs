@@ -5,8 +5,12 @@
 
 #![allow(clippy::needless_range_loop)]
 
+mod common;
+
+use common::compare::{assert_printed, close};
 use proptest::prelude::*;
 use rocking::model::column::{Block, Column, GRAVITY};
+use rocking::samples::{PRIETO_CUT_CORNERS, TABLE_1_HOUSNER};
 use rocking::{impact_model, opening_model, ModelOptions, Solver, Status};
 
 #[derive(Clone, Debug)]
@@ -70,18 +74,9 @@ fn scene() -> impl Strategy<Value = Scene> {
         })
 }
 
-/// `value` agrees with the thesis's `printed` number to its `decimals` printed digits: it lies
-/// within half a unit of the last printed digit (27.75 % prints as 27.8 %).
-fn assert_printed(value: f64, printed: f64, decimals: i32) {
-    let half_unit = 0.5 * 10f64.powi(-decimals);
-    assert!(
-        (value - printed).abs() <= half_unit * (1.0 + 1e-9),
-        "{value} does not print as {printed}"
-    );
-}
-
-fn close(a: f64, b: f64, scale: f64) -> bool {
-    (a - b).abs() <= 1e-9 * scale.max(1e-300)
+/// Agreement of the two solvers: `|a − b| ≤ 1e-9 · scale`.
+fn agree(a: f64, b: f64, scale: f64) -> bool {
+    close(a, b, 1e-9 * scale.max(1e-300))
 }
 
 fn inf_norm(v: &[f64]) -> f64 {
@@ -122,9 +117,9 @@ proptest! {
         prop_assert_eq!(&e.0, &p.0, "configurations differ");
         let scale = inf_norm(&s.rates);
         for (a, b) in e.1.iter().zip(&p.1) {
-            prop_assert!(close(*a, *b, scale), "velocities differ: {:?} vs {:?}", e.1, p.1);
+            prop_assert!(agree(*a, *b, scale), "velocities differ: {:?} vs {:?}", e.1, p.1);
         }
-        prop_assert!(close(e.2.kinetic_after, p.2.kinetic_after, e.2.kinetic_before));
+        prop_assert!(agree(e.2.kinetic_after, p.2.kinetic_after, e.2.kinetic_before));
     }
 
     #[test]
@@ -155,7 +150,7 @@ proptest! {
         prop_assert_eq!(&e.0, &p.0, "configurations differ");
         let scale = inf_norm(&e.1).max(inf_norm(&p.1));
         for (x, y) in e.1.iter().zip(&p.1) {
-            prop_assert!(close(*x, *y, scale), "accelerations differ: {:?} vs {:?}", e.1, p.1);
+            prop_assert!(agree(*x, *y, scale), "accelerations differ: {:?} vs {:?}", e.1, p.1);
         }
     }
 }
@@ -227,37 +222,32 @@ fn chained_bumps_follow_appendix_a_and_tend_to_one() {
     assert!(previous > 0.99, "100 bumps: ratio {previous}");
 }
 
-/// Prieto 2007 cut-corner granite block (2h = 500, 2b = 246, contact 2b₂ = 160): 25.2 % loss
-/// (thesis Table 1 last row, Eq. A3), from the impact model with a narrower contact.
-#[test]
-fn prieto_cut_corner_block() {
-    let column = Column::new(vec![Block {
-        width: 0.246,
-        height: 0.5,
-        mass: 1.0,
-        inertia: None,
-        contact_width: Some(0.160),
-    }])
-    .unwrap();
+/// Kinetic energy lost (%) when a single block rocking about its left corner lands (one impact,
+/// the impact model's defaults).
+fn one_impact_loss(column: &Column) -> f64 {
     let mass = column.mass_matrix(&column.pose(&[0.0, 0.0]));
     let mut st = vec![Status::OpenLeft];
     let mut v = vec![0.0, -1.0];
     let rep = impact_model(&mass, &mut st, &mut v, 0, &ModelOptions::default()).unwrap();
-    let loss = 100.0 * (1.0 - rep.kinetic_after / rep.kinetic_before);
-    assert_printed(loss, 25.2, 1);
+    100.0 * (1.0 - rep.kinetic_after / rep.kinetic_before)
 }
 
-/// Thesis Table 1, Housner rows h/b = 2, 3, 4: 51.0 %, 27.8 %, 16.9 %.
+/// Prieto 2007 cut-corner granite block (2h = 500, 2b = 246, contact 2b₂ = 160): 25.2 % loss
+/// (thesis Table 1 last row, Eq. A3), from the impact model with a narrower contact.
+#[test]
+fn prieto_cut_corner_block() {
+    let loss = one_impact_loss(&PRIETO_CUT_CORNERS.column());
+    assert_printed(loss, PRIETO_CUT_CORNERS.loss_percent);
+}
+
+/// Thesis Table 1, the Housner rows (h/b = 2, 3, 4: 51.0 %, 27.8 %, 16.9 % among them), from
+/// the impact model.
 #[test]
 fn table1_housner_rows() {
-    for (h_over_b, printed) in [(2.0, 51.0), (3.0, 27.8), (4.0, 16.9)] {
-        let column = Column::new(vec![Block::rectangle(0.1, 0.1 * h_over_b, 1.0)]).unwrap();
-        let mass = column.mass_matrix(&column.pose(&[0.0, 0.0]));
-        let mut st = vec![Status::OpenLeft];
-        let mut v = vec![0.0, -1.0];
-        let rep = impact_model(&mass, &mut st, &mut v, 0, &ModelOptions::default()).unwrap();
-        let loss = 100.0 * (1.0 - rep.kinetic_after / rep.kinetic_before);
-        assert_printed(loss, printed, 1);
+    for row in TABLE_1_HOUSNER {
+        let (width, height) = (row.two_b / 1000.0, row.two_h / 1000.0);
+        let column = Column::new(vec![Block::rectangle(width, height, 1.0)]).unwrap();
+        assert_printed(one_impact_loss(&column), row.loss_percent);
     }
 }
 

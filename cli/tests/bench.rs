@@ -1,8 +1,9 @@
 //! `rocking bench accuracy --quick`: the report has its sections, and Wilson θ's errors fall
 //! with the time step on every scene.
 
+mod common;
+
 use std::path::PathBuf;
-use std::process::Command;
 
 #[test]
 fn quick_accuracy_bench_writes_a_converging_report() {
@@ -10,18 +11,16 @@ fn quick_accuracy_bench_writes_a_converging_report() {
     let _ = std::fs::remove_dir_all(&dir);
     let out = dir.join("accuracy.md");
     let plot = dir.join("accuracy.svg");
-    let run = Command::new(env!("CARGO_BIN_EXE_rocking"))
-        .args(["bench", "accuracy", "--quick", "--out"])
-        .arg(&out)
-        .arg("--plot")
-        .arg(&plot)
-        .output()
-        .unwrap();
-    assert!(
-        run.status.success(),
-        "{}",
-        String::from_utf8_lossy(&run.stderr)
-    );
+    let run = common::run([
+        "bench".as_ref(),
+        "accuracy".as_ref(),
+        "--quick".as_ref(),
+        "--out".as_ref(),
+        out.as_os_str(),
+        "--plot".as_ref(),
+        plot.as_os_str(),
+    ]);
+    assert!(run.ok, "{}", run.stderr);
     let text = std::fs::read_to_string(&out).unwrap();
     for section in [
         "# Accuracy",

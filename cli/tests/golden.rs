@@ -6,16 +6,12 @@
 //! `t1-farfield.json` entries in every field but the wall time. The full 44-record comparison is
 //! `tools/golden/capture.sh --shared DIR && diff -r tests/golden DIR`.
 
+mod common;
+
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
-}
-
-fn bin() -> &'static str {
-    env!("CARGO_BIN_EXE_rocking")
-}
+use common::{bin, root};
 
 fn files(dir: &Path) -> Vec<PathBuf> {
     let mut out = Vec::new();
@@ -93,17 +89,9 @@ fn t1_of_shared_records_is_unchanged() {
             .iter()
             .map(|n| format!("../shared/records/fema-p695/farfield/{n}.AT2")),
     );
-    let out = Command::new(bin())
-        .args(&args)
-        .current_dir(root())
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let got: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let out = common::run(&args);
+    assert!(out.ok, "{}", out.stderr);
+    let got: serde_json::Value = serde_json::from_str(&out.stdout).unwrap();
     let want: serde_json::Value = serde_json::from_str(
         &std::fs::read_to_string(root().join("tests/golden/t1-farfield.json")).unwrap(),
     )

@@ -1,15 +1,28 @@
 //! `rocking simulate`: the bundled scenes run and write what they promise; bad scenes fail with
 //! the field named and write nothing.
 
-use std::path::{Path, PathBuf};
-use std::process::Command;
+mod common;
 
-fn rocking() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_rocking"))
+use std::path::{Path, PathBuf};
+
+use common::Run;
+
+/// `rocking simulate SCENE --out OUT`, with `--plot PLOT` when given.
+fn simulate(scene: &Path, out: &Path, plot: Option<&Path>) -> Run {
+    let mut args = vec![
+        "simulate".as_ref(),
+        scene.as_os_str(),
+        "--out".as_ref(),
+        out.as_os_str(),
+    ];
+    if let Some(plot) = plot {
+        args.extend(["--plot".as_ref(), plot.as_os_str()]);
+    }
+    common::run(args)
 }
 
 fn scenes() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/scenes")
+    common::root().join("examples/scenes")
 }
 
 fn fresh_dir(name: &str) -> PathBuf {
@@ -28,20 +41,8 @@ fn bundled_scenes_run_and_write_their_outputs() {
     ] {
         let out = fresh_dir(scene);
         let plot = out.join("plot.svg");
-        let run = rocking()
-            .args(["simulate"])
-            .arg(scenes().join(format!("{scene}.json")))
-            .arg("--out")
-            .arg(&out)
-            .arg("--plot")
-            .arg(&plot)
-            .output()
-            .unwrap();
-        assert!(
-            run.status.success(),
-            "{scene}: {}",
-            String::from_utf8_lossy(&run.stderr)
-        );
+        let run = simulate(&scenes().join(format!("{scene}.json")), &out, Some(&plot));
+        assert!(run.ok, "{scene}: {}", run.stderr);
         let summary: serde_json::Value =
             serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap())
                 .unwrap();
@@ -82,14 +83,8 @@ fn bundled_scenes_run_and_write_their_outputs() {
 #[test]
 fn the_two_block_experiment_opens_and_impacts_near_the_thesis_times() {
     let out = fresh_dir("two_block_times");
-    let run = rocking()
-        .arg("simulate")
-        .arg(scenes().join("two_block_free_rocking.json"))
-        .arg("--out")
-        .arg(&out)
-        .output()
-        .unwrap();
-    assert!(run.status.success());
+    let run = simulate(&scenes().join("two_block_free_rocking.json"), &out, None);
+    assert!(run.ok, "{}", run.stderr);
     let events: Vec<serde_json::Value> = std::fs::read_to_string(out.join("events.jsonl"))
         .unwrap()
         .lines()
@@ -120,24 +115,11 @@ fn a_bad_scene_fails_naming_the_field_and_writes_nothing() {
     )
     .unwrap();
     let out = dir.join("out");
-    let run = rocking()
-        .arg("simulate")
-        .arg(&scene)
-        .arg("--out")
-        .arg(&out)
-        .output()
-        .unwrap();
-    assert!(!run.status.success());
-    let stderr = String::from_utf8_lossy(&run.stderr);
-    assert!(stderr.contains("dt"), "{stderr}");
+    let run = simulate(&scene, &out, None);
+    assert!(!run.ok);
+    assert!(run.stderr.contains("dt"), "{}", run.stderr);
     assert!(!out.exists(), "output written for a failed scene");
     std::fs::write(&scene, r#"{"blocks": [], "excitation": {"type": "none"}, "duration": 1.0, "dt": 0.01, "speed": 3}"#).unwrap();
-    let run = rocking()
-        .arg("simulate")
-        .arg(&scene)
-        .arg("--out")
-        .arg(&out)
-        .output()
-        .unwrap();
-    assert!(String::from_utf8_lossy(&run.stderr).contains("unknown field `speed`"));
+    let run = simulate(&scene, &out, None);
+    assert!(run.stderr.contains("unknown field `speed`"));
 }

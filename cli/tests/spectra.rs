@@ -1,19 +1,15 @@
 //! `rocking t1`, `oas --merge`, `design width/check`: JSON outputs with the documented fields.
 
-use std::path::{Path, PathBuf};
-use std::process::Command;
+mod common;
 
+use std::path::PathBuf;
+
+use rocking::samples::PIER_EXAMPLE;
+
+/// `rocking args…` from the workspace root: (success, stdout, stderr).
 fn rocking(args: &[&str]) -> (bool, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_rocking"))
-        .args(args)
-        .current_dir(Path::new(env!("CARGO_MANIFEST_DIR")).join(".."))
-        .output()
-        .unwrap();
-    (
-        out.status.success(),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
+    let out = common::run(args);
+    (out.ok, out.stdout, out.stderr)
 }
 
 const SMALL: [&str; 4] = ["--levels", "8", "--sizes", "24"];
@@ -34,52 +30,26 @@ fn t1_json_has_the_documented_fields() {
 }
 
 #[test]
-fn oas_level_shards_merge_to_the_whole() {
-    let dir = std::env::temp_dir().join(format!("rocking-oas-merge-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let mut whole_args = vec!["oas", "examples/records/synthetic.AT2", "--json"];
-    whole_args.extend(SMALL);
-    let (ok, whole, err) = rocking(&whole_args);
-    assert!(ok, "{err}");
-    let mut files = Vec::new();
-    for i in 0..3 {
-        let shard = format!("{i}/3");
-        let mut args = whole_args.clone();
-        args.extend(["--shard", shard.as_str()]);
-        let (ok, out, err) = rocking(&args);
-        assert!(ok, "{err}");
-        let f = dir.join(format!("s{i}.json"));
-        std::fs::write(&f, out).unwrap();
-        files.push(f.to_string_lossy().into_owned());
-    }
-    let mut args = vec!["oas", "--merge"];
-    args.extend(files.iter().map(String::as_str));
-    let (ok, merged, err) = rocking(&args);
-    assert!(ok, "{err}");
-    let w: serde_json::Value = serde_json::from_str(&whole).unwrap();
-    let m: serde_json::Value = serde_json::from_str(&merged).unwrap();
-    assert_eq!(w["levels"], m["levels"]);
-    assert_eq!(w["summary"]["t1"], m["summary"]["t1"]);
-    assert_eq!(w["summary"]["beta"], m["summary"]["beta"]);
-    let _ = std::fs::remove_dir_all(&dir);
-}
-
-#[test]
 fn design_width_reproduces_the_pier_example() {
     // Thesis 5.3.4: a_g = 0.14 g, t_1 = 0.7 s, H = 12 m: B_a = 1.299 m, B_b = 2.122 m (Eq. 23
-    // gives 1.29847 for case a, printed 1.299 after double rounding: see design.rs).
-    let pga = format!("{}", 0.14 * 9.81);
-    for (mass, b) in [("uniform", 1.299), ("top", 2.122)] {
+    // gives 1.29847 for case a, printed 1.299 after double rounding: see the design tests).
+    let e = PIER_EXAMPLE;
+    let pga = format!("{}", e.pga_g * e.gravity);
+    let (height, t1) = (e.height.to_string(), e.t1.to_string());
+    for (mass, printed) in [("uniform", e.uniform.eq23), ("top", e.top.eq23)] {
         let (ok, out, err) = rocking(&[
-            "design", "width", "--height", "12", "--pga", &pga, "--t1", "0.7", "--mass", mass,
+            "design", "width", "--height", &height, "--pga", &pga, "--t1", &t1, "--mass", mass,
             "--json",
         ]);
         assert!(ok, "{err}");
         let v: serde_json::Value = serde_json::from_str(&out).unwrap();
-        assert!((v["width"].as_f64().unwrap() - b).abs() < 1e-3, "{v}");
+        assert!(
+            (v["width"].as_f64().unwrap() - printed.value).abs() < 1e-3,
+            "{v}"
+        );
     }
     let (ok, out, _) = rocking(&[
-        "design", "check", "--width", "1.2", "--height", "12", "--pga", &pga, "--t1", "0.7",
+        "design", "check", "--width", "1.2", "--height", &height, "--pga", &pga, "--t1", &t1,
         "--json",
     ]);
     assert!(ok);
@@ -110,4 +80,78 @@ fn spectra_bench_compares_with_full_runs() {
     assert!(row.ends_with("| yes |"), "{row}");
     assert!(text.contains("1 record(s): median"));
     assert!(text.contains("Speed-up of the energy-bound stop"));
+}
+
+/// An output without its wall-time lines (`"seconds": …`), which differ from run to run.
+fn without_seconds(json: &str) -> String {
+    json.lines()
+        .filter(|l| !l.trim_start().starts_with("\"seconds\""))
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+/// Runs `args` whole, then as `n` shards merged with `--merge`, and returns both outputs (wall
+/// times removed).
+fn whole_and_merged(command: &str, args: &[&str], n: usize, tag: &str) -> (String, String) {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("merge-{tag}"));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut whole_args = vec![command];
+    whole_args.extend(args);
+    let (ok, whole, err) = rocking(&whole_args);
+    assert!(ok, "{err}");
+    let mut files = Vec::new();
+    for i in 0..n {
+        let shard = format!("{i}/{n}");
+        let mut a = whole_args.clone();
+        a.extend(["--shard", shard.as_str()]);
+        let (ok, out, err) = rocking(&a);
+        assert!(ok, "{err}");
+        let f = dir.join(format!("s{i}.json"));
+        std::fs::write(&f, out).unwrap();
+        files.push(f.to_string_lossy().into_owned());
+    }
+    let mut a = vec![command, "--json", "--merge"];
+    a.extend(files.iter().map(String::as_str));
+    let (ok, merged, err) = rocking(&a);
+    assert!(ok, "{err}");
+    let _ = std::fs::remove_dir_all(&dir);
+    (without_seconds(&whole), without_seconds(&merged))
+}
+
+/// Sharded and merged, `rocking oas` prints the whole run's JSON byte for byte: every number
+/// read back from the shards is the number written (no last-digit drift in the sizes, levels or
+/// the fits recomputed from them).
+#[test]
+fn oas_shards_merge_bitwise_to_the_whole() {
+    let mut args = vec!["examples/records/synthetic.AT2", "--json"];
+    args.extend(["--levels", "16", "--sizes", "40"]);
+    let (whole, merged) = whole_and_merged("oas", &args, 3, "oas");
+    assert_eq!(whole, merged);
+}
+
+/// Sharded and merged, `rocking t1` prints the whole run's rows byte for byte (the records are
+/// given in file-name order, the order `--merge` sorts by). With `../shared` (issue 10's case):
+/// MUL009, MUL279 and LOS000, where LOS000's beta came back one ulp off.
+#[test]
+fn t1_shards_merge_bitwise_to_the_whole() {
+    let far = "../shared/records/fema-p695/farfield";
+    let shared = common::root().join(far).exists();
+    let records: Vec<String> = if shared {
+        [
+            "RSN953_NORTHR_MUL009",
+            "RSN953_NORTHR_MUL279",
+            "RSN960_NORTHR_LOS000",
+        ]
+        .iter()
+        .map(|n| format!("{far}/{n}.AT2"))
+        .collect()
+    } else {
+        println!("../shared absent: the bundled record only");
+        vec!["examples/records/synthetic.AT2".into(); 3]
+    };
+    let mut args: Vec<&str> = records.iter().map(String::as_str).collect();
+    args.push("--json");
+    let (whole, merged) = whole_and_merged("t1", &args, 2, "t1");
+    assert_eq!(whole, merged);
 }

@@ -1,4 +1,5 @@
-//! Equations of motion of a configuration and the per-step checks, without allocation.
+//! The column as the driver's chain ([`Equations`], [`ChainDynamics`]): equations of motion of a
+//! configuration and the per-step checks, without allocation, and the crate's two models.
 //!
 //! General path: the pose of the whole column ([`Column::pose_into`]), `M_FF` of the open DOFs
 //! ([`Pose::mass_entry`]), `q_F` ([`Pose::load_entry`], plus the exact velocity terms on
@@ -9,53 +10,18 @@
 //!   (the centripetal force passes through the fixed pivot);
 //! - everything closed: the column is straight, `q = a_g Qa − g Qg` with constants.
 
+use super::chain::{ChainDynamics, Check, Equations, Rigid};
+use super::events::settle::lock_dof;
+use crate::error::RockingError;
 use crate::model::cholesky;
 use crate::model::column::{Column, Pose};
+use crate::model::cone::{ModelOptions, ModelReport};
 use crate::model::configuration::Status;
+use crate::model::impact::kinetic_energy;
+use crate::model::opening::{reaction_margins, AllClosed, Configuration};
+use crate::{impact_model, opening_model};
 
-/// Rigid rotation of the part above interface `k_a` about the pivot of DOF `a` (straight column).
-#[derive(Clone, Copy, Debug, Default)]
-pub(crate) struct Rigid {
-    pub s0: f64,
-    /// `G − P` in the straight column.
-    pub dx: f64,
-    pub dy: f64,
-    /// Inverse of the moment of inertia about the pivot, `1 / M_aa`.
-    pub inv_ip: f64,
-}
-
-impl Rigid {
-    /// `(r_x, r_y)` for the rotation `theta`.
-    #[inline(always)]
-    pub fn arm(&self, theta: f64) -> (f64, f64) {
-        let (s, c) = theta.sin_cos();
-        (c * self.dx - s * self.dy, s * self.dx + c * self.dy)
-    }
-
-    #[inline(always)]
-    pub fn accel(&self, theta: f64, ag: f64, g: f64) -> f64 {
-        let (rx, ry) = self.arm(theta);
-        self.s0 * (ag * ry - g * rx) * self.inv_ip
-    }
-}
-
-/// Results of the end-of-step checks (accelerations are left in `Dynamics::acc_full`, the
-/// opening margins in `Dynamics::margin`).
-#[derive(Clone, Copy, Debug, Default)]
-pub(crate) struct Check {
-    /// Largest opening margin over the closed DOFs (`> 0`: the reaction test fails).
-    pub max_margin: f64,
-    pub tension: Option<usize>,
-    pub sliding: Option<usize>,
-    pub tipped: Option<usize>,
-    pub fallen: Option<usize>,
-    /// Power of the ground motion's inertial load, `Σ_f q^{ag}_f φ̇_f`.
-    pub power: f64,
-    /// `false` when the mass matrix of the configuration was not positive definite.
-    pub ok: bool,
-}
-
-pub(crate) struct Dynamics<'a> {
+pub(crate) struct ColumnDynamics<'a> {
     pub col: &'a Column,
     pub n: usize,
     pub g: f64,
@@ -86,16 +52,20 @@ pub(crate) struct Dynamics<'a> {
     pub margin: Vec<f64>,
     /// Block rotations of the last check.
     pub block_angles: Vec<f64>,
+    /// The full `2n × 2n` mass matrix and load vector of the last [`ColumnDynamics::assemble`], the
+    /// models' input.
+    pub system_mass: Vec<f64>,
+    pub system_load: Vec<f64>,
 }
 
-impl<'a> Dynamics<'a> {
+impl<'a> ColumnDynamics<'a> {
     pub fn new(
         col: &'a Column,
         gravity: f64,
         exact: bool,
         tol: f64,
         friction: f64,
-    ) -> Dynamics<'a> {
+    ) -> ColumnDynamics<'a> {
         let n = col.n_interfaces();
         let m = 2 * n;
         let pose = col.pose(&vec![0.0; m]);
@@ -123,7 +93,7 @@ impl<'a> Dynamics<'a> {
             isq.push(1.0 / ip.sqrt());
         }
         let centre_y0 = pose.centres.iter().map(|c| c[1]).collect();
-        Dynamics {
+        ColumnDynamics {
             col,
             n,
             g: gravity,
@@ -150,52 +120,9 @@ impl<'a> Dynamics<'a> {
             acc_full: vec![0.0; m],
             margin: vec![f64::NEG_INFINITY; m],
             block_angles: vec![0.0; n],
+            system_mass: vec![0.0; m * m],
+            system_load: vec![0.0; m],
         }
-    }
-
-    /// Smallest potential energy that tips a part of the column statically (straight column).
-    pub fn tipping_energy(&self) -> f64 {
-        self.rigid
-            .iter()
-            .map(|r| r.s0 * self.g * ((r.dx * r.dx + r.dy * r.dy).sqrt() - r.dy))
-            .fold(f64::INFINITY, f64::min)
-    }
-
-    /// Accelerations of the open DOFs (reduced vectors `x`, `v`, output `out`, all of length
-    /// `open.len()`). Returns `false` if the mass matrix is not positive definite.
-    #[inline]
-    pub fn accel(
-        &mut self,
-        open: &[usize],
-        statuses: &[Status],
-        ag: f64,
-        x: &[f64],
-        v: &[f64],
-        out: &mut [f64],
-    ) -> bool {
-        match open.len() {
-            0 => true,
-            1 => {
-                out[0] = self.rigid[open[0]].accel(x[0], ag, self.g);
-                true
-            }
-            k => {
-                for i in 0..k {
-                    self.phi[open[i]] = x[i];
-                    self.rates[open[i]] = v[i];
-                }
-                self.col.pose_into(&self.phi, &mut self.pose);
-                let ok = self.solve_open(open, statuses, ag);
-                out[..k].copy_from_slice(&self.rhs[..k]);
-                ok
-            }
-        }
-    }
-
-    /// Sets the scratch vectors to zero (call when the configuration changes).
-    pub fn reset_scratch(&mut self) {
-        self.phi.iter_mut().for_each(|v| *v = 0.0);
-        self.rates.iter_mut().for_each(|v| *v = 0.0);
     }
 
     /// Velocity terms of the exact equations into `vload` (uses `pose`, `rates`).
@@ -255,82 +182,6 @@ impl<'a> Dynamics<'a> {
         true
     }
 
-    /// The end-of-step checks at the state `phi`, `rates` (full `2n`) and ground acceleration
-    /// `ag`. Writes `acc_full`, `margin`, `block_angles`. `forces`: also tension and sliding.
-    pub fn check(
-        &mut self,
-        open: &[usize],
-        statuses: &[Status],
-        ag: f64,
-        phi: &[f64],
-        rates: &[f64],
-        forces: bool,
-    ) -> Check {
-        let n = self.n;
-        let g = self.g;
-        let mut out = Check {
-            max_margin: f64::NEG_INFINITY,
-            ok: true,
-            ..Check::default()
-        };
-        match open.len() {
-            0 => {
-                // Straight column moving with the ground.
-                let mut bmax = 0.0_f64;
-                for d in 0..2 * n {
-                    let q = ag * self.straight_qa[d] - g * self.straight_qg[d];
-                    self.q[d] = q;
-                    bmax = bmax.max(q.abs() * self.straight_isq[d]);
-                }
-                let thr = self.tol * bmax;
-                for d in 0..2 * n {
-                    let sigma = if d < n { -1.0 } else { 1.0 };
-                    let m = sigma * self.q[d] * self.straight_isq[d] - thr;
-                    self.margin[d] = m;
-                    out.max_margin = out.max_margin.max(m);
-                    self.acc_full[d] = 0.0;
-                }
-                self.block_angles.iter_mut().for_each(|v| *v = 0.0);
-                // N = S0 g, V = S0 a_g on every interface: the lowest decides.
-                if forces && ag.abs() > self.friction * g {
-                    out.sliding = Some(0);
-                }
-                out
-            }
-            1 if n == 1 => {
-                let d = open[0];
-                let r = self.rigid[d];
-                let theta = phi[d];
-                let omega = rates[d];
-                let (rx, ry) = r.arm(theta);
-                let eps = r.s0 * (ag * ry - g * rx) * r.inv_ip;
-                self.acc_full[d] = eps;
-                self.margin[0] = f64::NEG_INFINITY;
-                self.margin[1] = f64::NEG_INFINITY;
-                self.block_angles[0] = theta;
-                out.power = ag * r.s0 * ry * omega;
-                let sigma = statuses[0].sign();
-                if -sigma * rx > 0.0 {
-                    out.tipped = Some(0);
-                }
-                if theta.abs() >= 0.5 * std::f64::consts::PI {
-                    out.fallen = Some(0);
-                }
-                if forces {
-                    // c̈ = ε ẑ × r − ω² r; F = S0 (c̈ + (a_g, g)).
-                    let fx = r.s0 * (-eps * ry - omega * omega * rx + ag);
-                    let fy = r.s0 * (eps * rx - omega * omega * ry + g);
-                    self.classify_force(0, fx, fy, &mut out);
-                }
-                out
-            }
-            _ => {
-                self.general_check(open, statuses, ag, phi, rates, forces, &mut out);
-                out
-            }
-        }
-    }
-
     /// Tension and friction tests on interface `k` with shear `v` and normal force `nn`.
     fn classify_force(&self, k: usize, v: f64, nn: f64, out: &mut Check) {
         let scale = 1e-9 * self.rigid[k].s0 * self.g;
@@ -362,16 +213,10 @@ impl<'a> Dynamics<'a> {
         for (i, &d) in open.iter().enumerate() {
             self.acc_full[d] = self.rhs[i];
         }
-        // Loads and Jacobi scales of every generator (closed: both corners; open: its DOF).
-        let mut bmax = 0.0_f64;
+        // Loads and Jacobi scales of every generator (closed: both corners; open: its DOF),
+        // then the reaction test.
         for d in 0..2 * n {
-            let k = d % n;
-            let generator = match statuses[k].dof(k, n) {
-                None => true,
-                Some(a) => a == d,
-            };
-            if !generator {
-                self.isq[d] = 0.0;
+            if !statuses.generator(d) {
                 continue;
             }
             let mut q = self.pose.load_entry(d, ag, g);
@@ -380,24 +225,18 @@ impl<'a> Dynamics<'a> {
             }
             self.q[d] = q;
             self.isq[d] = 1.0 / self.pose.mass_entry(d, d).sqrt();
-            bmax = bmax.max(q.abs() * self.isq[d]);
         }
-        let thr = self.tol * bmax;
-        for d in 0..2 * n {
-            let k = d % n;
-            if statuses[k].is_open() {
-                self.margin[d] = f64::NEG_INFINITY;
-                continue;
-            }
-            let ma: f64 = open
-                .iter()
-                .map(|&f| self.pose.mass_entry(d, f) * self.acc_full[f])
-                .sum();
-            let sigma = if d < n { -1.0 } else { 1.0 };
-            let m = sigma * (self.q[d] - ma) * self.isq[d] - thr;
-            self.margin[d] = m;
-            out.max_margin = out.max_margin.max(m);
-        }
+        let pose = &self.pose;
+        out.max_margin = reaction_margins(
+            statuses,
+            open,
+            &self.q,
+            &self.isq,
+            &self.acc_full,
+            |d, f| pose.mass_entry(d, f),
+            self.tol,
+            &mut self.margin,
+        );
         let mut power = 0.0;
         for &f in open {
             power += self.pose.load_entry(f, ag, 0.0) * rates[f];
@@ -474,32 +313,6 @@ impl<'a> Dynamics<'a> {
         }
     }
 
-    /// Kinetic and potential energy of a state (relative to the straight column).
-    pub fn energy(&mut self, open: &[usize], phi: &[f64], rates: &[f64]) -> (f64, f64) {
-        self.col.pose_into(phi, &mut self.pose);
-        let mut t = 0.0;
-        for &a in open {
-            for &b in open {
-                t += rates[a] * self.pose.mass_entry(a, b) * rates[b];
-            }
-        }
-        let v: f64 = (0..self.n)
-            .map(|j| self.masses[j] * self.g * (self.pose.centres[j][1] - self.centre_y0[j]))
-            .sum();
-        (0.5 * t, v)
-    }
-
-    /// Power of the ground motion's inertial load at a state (general path).
-    pub fn power(&mut self, open: &[usize], ag: f64, phi: &[f64], rates: &[f64]) -> f64 {
-        if open.is_empty() || ag == 0.0 {
-            return 0.0;
-        }
-        self.col.pose_into(phi, &mut self.pose);
-        open.iter()
-            .map(|&f| self.pose.load_entry(f, ag, 0.0) * rates[f])
-            .sum()
-    }
-
     /// Full `2n × 2n` mass matrix and load vector (with the velocity terms when exact) at a
     /// state, for the models.
     pub fn full_system(
@@ -521,6 +334,224 @@ impl<'a> Dynamics<'a> {
                 *l += v;
             }
         }
+    }
+}
+
+impl Equations for ColumnDynamics<'_> {
+    #[inline]
+    fn accel(
+        &mut self,
+        open: &[usize],
+        statuses: &[Status],
+        ag: f64,
+        x: &[f64],
+        v: &[f64],
+        out: &mut [f64],
+    ) -> bool {
+        match open.len() {
+            0 => true,
+            1 => {
+                out[0] = self.rigid[open[0]].accel(x[0], ag, self.g);
+                true
+            }
+            k => {
+                for i in 0..k {
+                    self.phi[open[i]] = x[i];
+                    self.rates[open[i]] = v[i];
+                }
+                self.col.pose_into(&self.phi, &mut self.pose);
+                let ok = self.solve_open(open, statuses, ag);
+                out[..k].copy_from_slice(&self.rhs[..k]);
+                ok
+            }
+        }
+    }
+
+    /// Every single open DOF of a column turns the part above about a pivot fixed to the ground.
+    #[inline]
+    fn rigid_rotation(&self, dof: usize) -> Option<(Rigid, f64)> {
+        Some((self.rigid[dof], self.g))
+    }
+}
+
+impl ChainDynamics for ColumnDynamics<'_> {
+    fn n_joints(&self) -> usize {
+        self.n
+    }
+
+    /// Sets the scratch vectors to zero.
+    fn reconfigured(&mut self) {
+        self.phi.iter_mut().for_each(|v| *v = 0.0);
+        self.rates.iter_mut().for_each(|v| *v = 0.0);
+    }
+
+    #[inline]
+    fn check(
+        &mut self,
+        open: &[usize],
+        statuses: &[Status],
+        ag: f64,
+        phi: &[f64],
+        rates: &[f64],
+        forces: bool,
+    ) -> Check {
+        let n = self.n;
+        let g = self.g;
+        let mut out = Check {
+            max_margin: f64::NEG_INFINITY,
+            ok: true,
+            ..Check::default()
+        };
+        match open.len() {
+            0 => {
+                // Straight column moving with the ground: constant `M`, `q = a_g Qa − g Qg`.
+                for d in 0..2 * n {
+                    self.q[d] = ag * self.straight_qa[d] - g * self.straight_qg[d];
+                    self.acc_full[d] = 0.0;
+                }
+                out.max_margin = reaction_margins(
+                    &AllClosed(n),
+                    &[],
+                    &self.q,
+                    &self.straight_isq,
+                    &self.acc_full,
+                    |_, _| 0.0,
+                    self.tol,
+                    &mut self.margin,
+                );
+                self.block_angles.iter_mut().for_each(|v| *v = 0.0);
+                // N = S0 g, V = S0 a_g on every interface: the lowest decides.
+                if forces && ag.abs() > self.friction * g {
+                    out.sliding = Some(0);
+                }
+                out
+            }
+            1 if n == 1 => {
+                let d = open[0];
+                let r = self.rigid[d];
+                let theta = phi[d];
+                let omega = rates[d];
+                let (rx, ry) = r.arm(theta);
+                let eps = r.s0 * (ag * ry - g * rx) * r.inv_ip;
+                self.acc_full[d] = eps;
+                self.margin[0] = f64::NEG_INFINITY;
+                self.margin[1] = f64::NEG_INFINITY;
+                self.block_angles[0] = theta;
+                out.power = ag * r.s0 * ry * omega;
+                let sigma = statuses[0].sign();
+                if -sigma * rx > 0.0 {
+                    out.tipped = Some(0);
+                }
+                if theta.abs() >= 0.5 * std::f64::consts::PI {
+                    out.fallen = Some(0);
+                }
+                if forces {
+                    // c̈ = ε ẑ × r − ω² r; F = S0 (c̈ + (a_g, g)).
+                    let fx = r.s0 * (-eps * ry - omega * omega * rx + ag);
+                    let fy = r.s0 * (eps * rx - omega * omega * ry + g);
+                    self.classify_force(0, fx, fy, &mut out);
+                }
+                out
+            }
+            _ => {
+                self.general_check(open, statuses, ag, phi, rates, forces, &mut out);
+                out
+            }
+        }
+    }
+
+    fn accelerations(&self) -> &[f64] {
+        &self.acc_full
+    }
+
+    fn margins(&self) -> &[f64] {
+        &self.margin
+    }
+
+    fn block_angles(&self) -> &[f64] {
+        &self.block_angles
+    }
+
+    fn energy(&mut self, open: &[usize], phi: &[f64], rates: &[f64]) -> (f64, f64) {
+        self.col.pose_into(phi, &mut self.pose);
+        let mut t = 0.0;
+        for &a in open {
+            for &b in open {
+                t += rates[a] * self.pose.mass_entry(a, b) * rates[b];
+            }
+        }
+        let v: f64 = (0..self.n)
+            .map(|j| self.masses[j] * self.g * (self.pose.centres[j][1] - self.centre_y0[j]))
+            .sum();
+        (0.5 * t, v)
+    }
+
+    fn power(&mut self, open: &[usize], ag: f64, phi: &[f64], rates: &[f64]) -> f64 {
+        if open.is_empty() || ag == 0.0 {
+            return 0.0;
+        }
+        self.col.pose_into(phi, &mut self.pose);
+        open.iter()
+            .map(|&f| self.pose.load_entry(f, ag, 0.0) * rates[f])
+            .sum()
+    }
+
+    /// Over the rigid rotations of the straight column.
+    fn tipping_energy(&self) -> f64 {
+        self.rigid
+            .iter()
+            .map(|r| r.s0 * self.g * ((r.dx * r.dx + r.dy * r.dy).sqrt() - r.dy))
+            .fold(f64::INFINITY, f64::min)
+    }
+
+    /// The largest `m R / √(2 I_P)` over the rigid rotations of the straight column.
+    fn energy_growth_bound(&self) -> f64 {
+        self.rigid
+            .iter()
+            .map(|r| r.s0 * (r.dx * r.dx + r.dy * r.dy).sqrt() * (0.5 * r.inv_ip).sqrt())
+            .fold(0.0, f64::max)
+    }
+
+    fn assemble(&mut self, statuses: &[Status], ag: f64, phi: &[f64], rates: &[f64]) {
+        let mut mass = std::mem::take(&mut self.system_mass);
+        let mut load = std::mem::take(&mut self.system_load);
+        self.full_system(statuses, ag, phi, rates, &mut mass, &mut load);
+        self.system_mass = mass;
+        self.system_load = load;
+    }
+
+    fn kinetic_energy(&self, rates: &[f64]) -> f64 {
+        kinetic_energy(&self.system_mass, rates)
+    }
+
+    fn opening(
+        &self,
+        statuses: &mut [Status],
+        options: &ModelOptions,
+    ) -> Result<ModelReport, RockingError> {
+        let mut acceleration = vec![0.0; self.system_load.len()];
+        opening_model(
+            &self.system_mass,
+            &self.system_load,
+            statuses,
+            &mut acceleration,
+            options,
+        )
+    }
+
+    fn impact(
+        &self,
+        statuses: &mut [Status],
+        rates: &mut [f64],
+        closing: &[usize],
+        options: &ModelOptions,
+    ) -> Result<ModelReport, RockingError> {
+        debug_assert_eq!(closing.len(), 1, "a column closes one interface at a time");
+        impact_model(&self.system_mass, statuses, rates, closing[0], options)
+    }
+
+    fn lock(&self, open: &[usize], dof: usize, rates: &mut [f64]) {
+        lock_dof(&self.system_mass, 2 * self.n, open, dof, rates);
     }
 }
 

@@ -7,15 +7,62 @@
 //! so two evaluations are the rule; the iteration stops when the change of the acceleration is
 //! below `1e-6` of its size (the remaining error is then far below the truncation error).
 //!
-//! RK4 and DOP853 are explicit Runge–Kutta methods on the first-order system `(x, v)' = (v, a)`:
-//! stage `i` evaluates `a` at `x0 + h Σ a_ij V_j`, `v0 + h Σ a_ij A_j` and at the ground
-//! acceleration of its own time `t0 + c_i h`.
+//! RK4 and DOP853 are explicit Runge–Kutta methods on the first-order system `(x, v)' = (v, a)`,
+//! one loop over a Butcher [`Tableau`]: stage `i` evaluates `a` at `x0 + h Σ a_ij V_j`,
+//! `v0 + h Σ a_ij A_j` and at the ground acceleration of its own time `t0 + c_i h`.
+//!
+//! The equations come through [`Equations`], so any chain the driver runs (SPEC §9) is integrated
+//! by the same code.
 
+use super::chain::Equations;
 use super::dop853;
-use super::dynamics::Dynamics;
 use super::Integrator;
 use crate::ground::GroundMotion;
 use crate::model::configuration::Status;
+
+/// An explicit Runge–Kutta method: nodes `c`, the nonzero `a_ij` of each stage (pairs
+/// `(j, a_ij)`, `j < i`), the weights `b_j` over a common `divisor` (the step's increment is
+/// `h / divisor · Σ b_j k_j`; RK4's integer weights over 6 give the classical formula's
+/// rounding exactly), stage 0 the start of the step.
+pub(crate) struct Tableau {
+    pub c: &'static [f64],
+    pub a: &'static [&'static [(usize, f64)]],
+    pub b: &'static [(usize, f64)],
+    pub divisor: f64,
+}
+
+impl Tableau {
+    pub const fn stages(&self) -> usize {
+        self.c.len()
+    }
+}
+
+/// The classical fourth-order Runge–Kutta method.
+pub(crate) const RK4: Tableau = Tableau {
+    c: &[0.0, 0.5, 0.5, 1.0],
+    a: &[&[], &[(0, 0.5)], &[(1, 0.5)], &[(2, 1.0)]],
+    b: &[(0, 1.0), (1, 2.0), (2, 2.0), (3, 1.0)],
+    divisor: 6.0,
+};
+
+/// The eighth-order solution of DOP853 ([`dop853`]).
+pub(crate) const DOP853: Tableau = Tableau {
+    c: &dop853::C,
+    a: &dop853::A,
+    b: &dop853::B,
+    divisor: 1.0,
+};
+
+impl Integrator {
+    /// The Butcher tableau of an explicit method.
+    fn tableau(self) -> Option<&'static Tableau> {
+        match self {
+            Integrator::Rk4 => Some(&RK4),
+            Integrator::Dop853 => Some(&DOP853),
+            Integrator::WilsonTheta { .. } | Integrator::Newmark => None,
+        }
+    }
+}
 
 const MAX_ITERATIONS: usize = 12;
 const ITERATION_TOLERANCE: f64 = 1e-6;
@@ -29,10 +76,8 @@ pub(crate) struct Stepper {
     vs: Vec<f64>,
     at: Vec<f64>,
     an: Vec<f64>,
-    kv: [Vec<f64>; 3],
-    kx: [Vec<f64>; 3],
-    /// DOP853 stages, `n` per stage: velocities `V_j` and accelerations `A_j` (empty for the
-    /// other methods).
+    /// Runge–Kutta stages, `n` per stage: velocities `V_j` and accelerations `A_j` (empty for
+    /// the implicit methods).
     sv: Vec<f64>,
     sa: Vec<f64>,
 }
@@ -40,11 +85,7 @@ pub(crate) struct Stepper {
 impl Stepper {
     pub fn new(n: usize, method: Integrator) -> Stepper {
         let z = || vec![0.0; n];
-        let stages = if method == Integrator::Dop853 {
-            dop853::STAGES * n
-        } else {
-            0
-        };
+        let stages = method.tableau().map_or(0, |t| t.stages() * n);
         Stepper {
             x1: z(),
             v1: z(),
@@ -53,8 +94,6 @@ impl Stepper {
             vs: z(),
             at: z(),
             an: z(),
-            kv: [z(), z(), z()],
-            kx: [z(), z(), z()],
             sv: vec![0.0; stages],
             sa: vec![0.0; stages],
         }
@@ -77,7 +116,7 @@ impl Stepper {
     pub fn step(
         &mut self,
         method: Integrator,
-        dynm: &mut Dynamics,
+        dynm: &mut impl Equations,
         open: &[usize],
         statuses: &[Status],
         motion: &dyn GroundMotion,
@@ -114,75 +153,22 @@ impl Stepper {
                 ok
             }
             Integrator::Rk4 => {
-                let agm = motion.acceleration(t0 + 0.5 * h);
-                let mut ok = true;
-                // Stage 2 and 3 at the midpoint, stage 4 at the end; stage 1 is (v0, a0).
-                for i in 0..k {
-                    self.xs[i] = x0[i] + 0.5 * h * v0[i];
-                    self.vs[i] = v0[i] + 0.5 * h * a0[i];
-                }
-                ok &= dynm.accel(
-                    open,
-                    statuses,
-                    agm,
-                    &self.xs[..k],
-                    &self.vs[..k],
-                    &mut self.kv[0][..k],
-                );
-                self.kx[0][..k].copy_from_slice(&self.vs[..k]);
-                for i in 0..k {
-                    self.xs[i] = x0[i] + 0.5 * h * self.kx[0][i];
-                    self.vs[i] = v0[i] + 0.5 * h * self.kv[0][i];
-                }
-                ok &= dynm.accel(
-                    open,
-                    statuses,
-                    agm,
-                    &self.xs[..k],
-                    &self.vs[..k],
-                    &mut self.kv[1][..k],
-                );
-                self.kx[1][..k].copy_from_slice(&self.vs[..k]);
-                for i in 0..k {
-                    self.xs[i] = x0[i] + h * self.kx[1][i];
-                    self.vs[i] = v0[i] + h * self.kv[1][i];
-                }
-                ok &= dynm.accel(
-                    open,
-                    statuses,
-                    ag1,
-                    &self.xs[..k],
-                    &self.vs[..k],
-                    &mut self.kv[2][..k],
-                );
-                self.kx[2][..k].copy_from_slice(&self.vs[..k]);
-                for i in 0..k {
-                    self.x1[i] = x0[i]
-                        + h / 6.0
-                            * (v0[i] + 2.0 * self.kx[0][i] + 2.0 * self.kx[1][i] + self.kx[2][i]);
-                    self.v1[i] = v0[i]
-                        + h / 6.0
-                            * (a0[i] + 2.0 * self.kv[0][i] + 2.0 * self.kv[1][i] + self.kv[2][i]);
-                }
-                ok &= dynm.accel(
-                    open,
-                    statuses,
-                    ag1,
-                    &self.x1[..k],
-                    &self.v1[..k],
-                    &mut self.a1[..k],
-                );
-                ok
+                self.explicit(&RK4, dynm, open, statuses, motion, t0, h, ag1, x0, v0, a0)
             }
-            Integrator::Dop853 => self.dop853(dynm, open, statuses, motion, t0, h, ag1, x0, v0, a0),
+            Integrator::Dop853 => self.explicit(
+                &DOP853, dynm, open, statuses, motion, t0, h, ag1, x0, v0, a0,
+            ),
         }
     }
 
-    /// One step of the eighth-order Dormand–Prince method ([`dop853`]).
+    /// One step of an explicit Runge–Kutta method. Stage 0 is the state at the step start
+    /// (FSAL: its derivative is the acceleration the driver keeps); a stage at `c = 1` takes
+    /// `ag1`, one at the previous stage's node reuses its ground acceleration.
     #[allow(clippy::too_many_arguments)]
-    fn dop853(
+    fn explicit(
         &mut self,
-        dynm: &mut Dynamics,
+        tableau: &Tableau,
+        dynm: &mut impl Equations,
         open: &[usize],
         statuses: &[Status],
         motion: &dyn GroundMotion,
@@ -198,8 +184,9 @@ impl Stepper {
         sv[..k].copy_from_slice(v0);
         sa[..k].copy_from_slice(a0);
         let mut ok = true;
-        for i in 1..dop853::STAGES {
-            let row = dop853::A[i];
+        let mut previous = (f64::NAN, f64::NAN);
+        for i in 1..tableau.stages() {
+            let row = tableau.a[i];
             for r in 0..k {
                 let (mut dx, mut dv) = (0.0, 0.0);
                 for &(j, a) in row {
@@ -209,12 +196,15 @@ impl Stepper {
                 self.xs[r] = x0[r] + h * dx;
                 sv[i * k + r] = v0[r] + h * dv;
             }
-            let c = dop853::C[i];
+            let c = tableau.c[i];
             let ag = if c == 1.0 {
                 ag1
+            } else if c == previous.0 {
+                previous.1
             } else {
                 motion.acceleration(t0 + c * h)
             };
+            previous = (c, ag);
             ok &= dynm.accel(
                 open,
                 statuses,
@@ -224,14 +214,15 @@ impl Stepper {
                 &mut sa[i * k..(i + 1) * k],
             );
         }
+        let hb = h / tableau.divisor;
         for r in 0..k {
             let (mut dx, mut dv) = (0.0, 0.0);
-            for &(j, b) in &dop853::B {
+            for &(j, b) in tableau.b {
                 dx += b * sv[j * k + r];
                 dv += b * sa[j * k + r];
             }
-            self.x1[r] = x0[r] + h * dx;
-            self.v1[r] = v0[r] + h * dv;
+            self.x1[r] = x0[r] + hb * dx;
+            self.v1[r] = v0[r] + hb * dv;
         }
         ok &= dynm.accel(
             open,
@@ -250,7 +241,7 @@ impl Stepper {
     #[allow(clippy::too_many_arguments)]
     fn collocate(
         &mut self,
-        dynm: &mut Dynamics,
+        dynm: &mut impl Equations,
         open: &[usize],
         statuses: &[Status],
         ag: f64,
@@ -262,15 +253,19 @@ impl Stepper {
     ) -> bool {
         let k = open.len();
         let c_old = if c_new == 0.25 { 0.25 } else { 2.0 / 6.0 };
-        if k == 1 {
-            // One open DOF (every single block, and most of the time of a column): the same
-            // iteration on scalars, with the rigid-rotation acceleration of `Dynamics::accel`.
-            let rigid = dynm.rigid[open[0]];
+        let rigid = if k == 1 {
+            dynm.rigid_rotation(open[0])
+        } else {
+            None
+        };
+        if let Some((rigid, g)) = rigid {
+            // One open DOF turning a rigid part (every single block, and most of the time of a
+            // column): the same iteration on scalars, with the rigid rotation's acceleration.
             let (x0, v0, a0) = (x0[0], v0[0], a0[0]);
             let mut at = a0;
             for it in 0..MAX_ITERATIONS {
                 let xs = x0 + tau * v0 + tau * tau * (c_old * a0 + c_new * at);
-                let an = rigid.accel(xs, ag, dynm.g);
+                let an = rigid.accel(xs, ag, g);
                 let diff = 0.0_f64.max((an - at).abs());
                 let scale = 0.0_f64.max(an.abs());
                 at = an;

@@ -12,7 +12,7 @@ pub trait GroundMotion {
     fn end_time(&self) -> f64;
     /// An upper bound of `∫_t^∞ |a_g(s)| ds` (m/s), the most velocity the ground can still
     /// impose, or `None` when the motion cannot tell (the default). Used by
-    /// [`crate::driver::SimulationOptions::stop_when_safe`].
+    /// [`crate::driver::StoppingOptions::stop_when_safe`].
     fn remaining_impulse(&self, _t: f64) -> Option<f64> {
         None
     }

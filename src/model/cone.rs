@@ -21,6 +21,11 @@ use crate::error::{ErrorKind, RockingError};
 
 /// Which algorithm chooses the configuration.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(rename_all = "lowercase")
+)]
 pub enum Solver {
     /// Enumeration for few closed interfaces (cheap and gives the full report), projection above.
     Auto,
@@ -102,8 +107,11 @@ impl ModelOptions {
     }
 }
 
-/// What a model call did, for logs and for the caller's confidence in the answer.
+/// What a model call did, for logs and for the caller's confidence in the answer. (With the
+/// `serde` feature, a NaN `runner_up` becomes `null` in JSON, which JSON cannot read back as a
+/// number.)
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct ModelReport {
     /// The solver that ran (never `Auto`).
     pub solver: Solver,

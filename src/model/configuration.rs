@@ -20,6 +20,23 @@ pub enum Status {
     OpenLeft = 1,
 }
 
+/// With the `serde` feature a status is its C value: -1, 0 or 1.
+#[cfg(feature = "serde")]
+impl serde::Serialize for Status {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_i8(self.as_i8())
+    }
+}
+
+#[cfg(feature = "serde")]
+impl<'de> serde::Deserialize<'de> for Status {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Status, D::Error> {
+        let v = i8::deserialize(d)?;
+        Status::from_i8(v)
+            .ok_or_else(|| serde::de::Error::custom(format!("a status is -1, 0 or 1, got {v}")))
+    }
+}
+
 impl Status {
     /// Decodes a C status value.
     pub fn from_i8(v: i8) -> Option<Status> {

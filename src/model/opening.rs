@@ -118,8 +118,9 @@ impl ReactionCheck {
 }
 
 /// The eccentricity test as reaction signs (SPEC §3): solves the current configuration and
-/// reports the closed interfaces that must open. Consistent with [`opening_model`]: the
-/// configuration holds exactly when the opening model keeps it.
+/// reports the closed interfaces that must open (`reaction_margins`, the test the driver makes
+/// at every step). Consistent with [`opening_model`]: the configuration holds exactly when the
+/// opening model keeps it.
 pub fn check_configuration(
     mass: &[f64],
     load: &[f64],
@@ -154,29 +155,141 @@ pub fn check_configuration(
                 - load[r];
         }
     }
-    let p = problem.p();
-    let mut must_open = Vec::new();
-    for (j, gen) in problem.gens.iter().enumerate() {
-        if !gen.bounded {
-            continue;
-        }
-        let w = problem.b[j]
-            - free
-                .iter()
-                .map(|&s| problem.a[j * p + s] * y_hat[s])
-                .sum::<f64>();
-        let k = gen
-            .group
-            .expect("bounded generators of the opening model are corners");
-        if w > problem.threshold && must_open.last() != Some(&k) {
-            must_open.push(k);
-        }
-    }
+    let inv_sqrt_mass: Vec<f64> = (0..m).map(|d| 1.0 / mass[d * m + d].sqrt()).collect();
+    let open = configuration::open_dofs(statuses);
+    let mut margin = vec![0.0; m];
+    reaction_margins(
+        statuses,
+        &open,
+        load,
+        &inv_sqrt_mass,
+        &a,
+        |d, f| mass[d * m + f],
+        tolerance,
+        &mut margin,
+    );
+    let must_open = (0..n)
+        .filter(|&k| margin[k] > 0.0 || margin[n + k] > 0.0)
+        .collect();
     Ok(ReactionCheck {
         acceleration: a,
         reactions,
         must_open,
     })
+}
+
+/// The reaction test (SPEC §3: the eccentricity test as reaction signs), the one function behind
+/// [`check_configuration`] and the driver's check at every step.
+///
+/// With the current configuration's accelerations `acc` (`M_FF a_F = q_F`, zero off the open
+/// DOFs), the generalised reaction on a corner DOF `d` of a closed interface is
+/// `λ_d = (M a)_d − q_d`, admissible when `λ ≤ 0` on `phĭ` and `λ ≥ 0` on `phî`. Its margin is the
+/// inadmissible part in Jacobi-scaled units less the threshold of the cone problem
+/// ([`ConeProblem`]: the gradient `b̂ − Â ŷ` of a corner generator against `tolerance` times
+/// the largest `|b̂|`):
+///
+/// `σ_d (q_d − Σ_{f open} M_df a_f) / √M_dd − tolerance · max_g |q_g| / √M_gg`,
+///
+/// `σ` = −1 on `phĭ`, +1 on `phî`, the maximum over the generators of the configuration (both
+/// corners of every closed interface and every open DOF). `> 0`: the interface must open.
+///
+/// `config` is the configuration (`[Status]`, or [`AllClosed`] for the straight column, which
+/// compiles to the loops of that case alone); `load` (`q`) and `inv_sqrt_mass` (`1/√M_dd`) are
+/// read on the generators only; `mass(d, f)` is `M_df`. Writes `margin` (`2n`; `−∞` on the DOFs
+/// of open interfaces) and returns the largest margin (`−∞` when every interface is open).
+#[allow(clippy::too_many_arguments)]
+#[inline]
+pub(crate) fn reaction_margins<C: Configuration + ?Sized>(
+    config: &C,
+    open: &[usize],
+    load: &[f64],
+    inv_sqrt_mass: &[f64],
+    acc: &[f64],
+    mass: impl Fn(usize, usize) -> f64,
+    tolerance: f64,
+    margin: &mut [f64],
+) -> f64 {
+    let n = config.interfaces();
+    let (load, inv_sqrt_mass, margin) = (
+        &load[..2 * n],
+        &inv_sqrt_mass[..2 * n],
+        &mut margin[..2 * n],
+    );
+    let mut bmax = 0.0_f64;
+    for d in 0..2 * n {
+        if config.generator(d) {
+            bmax = bmax.max(load[d].abs() * inv_sqrt_mass[d]);
+        }
+    }
+    let threshold = tolerance * bmax;
+    let mut largest = f64::NEG_INFINITY;
+    for d in 0..2 * n {
+        if !config.closed_corner(d) {
+            margin[d] = f64::NEG_INFINITY;
+            continue;
+        }
+        let ma: f64 = open.iter().map(|&f| mass(d, f) * acc[f]).sum();
+        let sigma = if d < n { -1.0 } else { 1.0 };
+        let v = sigma * (load[d] - ma) * inv_sqrt_mass[d] - threshold;
+        margin[d] = v;
+        largest = largest.max(v);
+    }
+    largest
+}
+
+/// A configuration as the reaction test reads it.
+pub(crate) trait Configuration {
+    /// Number of interfaces `n`.
+    fn interfaces(&self) -> usize;
+    /// Whether DOF `d < 2n` is a generator: a corner of a closed interface, or the DOF of an
+    /// open one.
+    fn generator(&self, d: usize) -> bool;
+    /// Whether DOF `d < 2n` is a corner of a closed interface.
+    fn closed_corner(&self, d: usize) -> bool;
+}
+
+impl Configuration for [Status] {
+    #[inline]
+    fn interfaces(&self) -> usize {
+        self.len()
+    }
+
+    #[inline]
+    fn generator(&self, d: usize) -> bool {
+        let n = self.len();
+        // The interface of `d` without an integer division: this runs at every step.
+        match self[if d < n { d } else { d - n }] {
+            Status::Closed => true,
+            Status::OpenRight => d < n,
+            Status::OpenLeft => d >= n,
+        }
+    }
+
+    #[inline]
+    fn closed_corner(&self, d: usize) -> bool {
+        let n = self.len();
+        self[if d < n { d } else { d - n }] == Status::Closed
+    }
+}
+
+/// Every one of `n` interfaces closed: the straight column.
+pub(crate) struct AllClosed(pub usize);
+
+impl Configuration for AllClosed {
+    #[inline]
+    fn interfaces(&self) -> usize {
+        self.0
+    }
+
+    #[inline]
+    fn generator(&self, _: usize) -> bool {
+        true
+    }
+
+    #[inline]
+    fn closed_corner(&self, _: usize) -> bool {
+        true
+    }
 }
 
 #[cfg(test)]

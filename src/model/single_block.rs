@@ -11,6 +11,12 @@
 //! All functions are plain formulas in SI units (m, s, rad, m/s²). They do not validate their
 //! arguments: outside the stated domain they return NaN or a meaningless number. The design
 //! functions in [`crate::design`] validate and return errors.
+//!
+//! [`EquivalentBlock`] gathers these quantities for one block of given width, height and
+//! [`MassDistribution`]: the pier of the design method and the axes of the overturning spectra.
+
+use crate::model::column::Column;
+use crate::validate::{positive, InvalidValue};
 
 /// `α` of a uniform rectangular block: `θ = α m R²` with `θ` the moment of inertia about a bottom
 /// corner (thesis Eq. 13, Fig. 7).
@@ -146,168 +152,164 @@ pub fn normalised_critical_impulse(delta: f64) -> f64 {
     (2.0 / (1.0 + delta.cos())).sqrt()
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
+/// Mass distribution of a symmetric block (thesis 5.3.3, Eq. 22, Fig. 51; the two cases of the
+/// pier example, Eq. 23).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum MassDistribution {
+    /// A solid block of uniform mass (case "a" of the pier example). Centre of mass at mid-height
+    /// (`h_c = H/2`), `α = 4/3` (Eq. 13), `tan δ = B/H`, `R = ½√(B² + H²)`.
+    Uniform,
+    /// The mass concentrated at the top, the weight of the pier neglected (case "b" of the pier
+    /// example). A point mass at `h_c = H`, `α = 1` (`θ = m R²`), `tan δ = B/(2H)`,
+    /// `R = √((B/2)² + H²)`.
+    Top,
+    /// Any other symmetric distribution (Fig. 51): `α` of Eq. 22 and the height of the centre of
+    /// mass as a fraction of the block's height. Both are needed: `α` alone fixes `p` only once
+    /// `R` (hence the centre of mass) is known, and `δ` also depends on the centre of mass.
+    /// `α` is taken as a constant, independent of the width (exact for the two cases above).
+    General {
+        /// `θ = α m R²` about a bottom corner.
+        alpha: f64,
+        /// Height of the centre of mass divided by the block's height `H`.
+        centre_height_ratio: f64,
+    },
+}
 
-    /// Round to `decimals` places (half away from zero), for comparisons with printed values.
-    fn round_to(x: f64, decimals: i32) -> f64 {
-        let s = 10f64.powi(decimals);
-        (x * s).round() / s
-    }
-
-    /// Housner energy loss in percent from the printed full dimensions `2h`, `2b`.
-    fn eta_percent(two_h: f64, two_b: f64) -> f64 {
-        100.0 * energy_loss(housner_mu(two_h / 2.0, two_b / 2.0))
-    }
-
-    #[test]
-    fn table_1_housner_rows() {
-        // (2h, 2b, printed η_Hous in %), thesis Table 1, Eq. 1 and 2.
-        let rows = [
-            (200.0, 100.0, 51.0),
-            (400.0, 100.0, 16.9),
-            (771.5, 152.0, 10.9),
-            (950.0, 190.0, 11.2),
-            (1000.0, 250.0, 16.9),
-            (1000.0, 170.0, 8.2),
-            (1000.0, 120.0, 4.2),
-        ];
-        for (two_h, two_b, printed) in rows {
-            assert_eq!(
-                round_to(eta_percent(two_h, two_b), 1),
-                printed,
-                "{two_h} x {two_b}"
-            );
+impl MassDistribution {
+    /// `α` of Eq. 22.
+    pub fn alpha(self) -> f64 {
+        match self {
+            MassDistribution::Uniform => ALPHA_UNIFORM,
+            MassDistribution::Top => ALPHA_POINT_MASS,
+            MassDistribution::General { alpha, .. } => alpha,
         }
     }
 
-    /// h/b = 3: μ = 17/20 exactly and η = 27.75 % exactly, a tie at one decimal. The thesis
-    /// prints 27.8 % (round half up). The f64 value is 27.750000000000007, so rounding it gives
-    /// the printed 27.8; because that depends on the last ulp, the test also checks that the value
-    /// is the tie and that the printed number is its half-up rounding.
-    #[test]
-    fn table_1_h_over_b_3_is_an_exact_tie() {
-        let eta = eta_percent(300.0, 100.0);
-        assert_eq!(round_to(eta, 1), 27.8);
-        assert!((eta - 27.75).abs() <= 8.0 * f64::EPSILON * 27.75, "{eta}");
-        assert_eq!(round_to(27.75, 1), 27.8);
-        assert_eq!(housner_mu(3.0, 1.0), 0.85);
-    }
-
-    #[test]
-    fn table_1_prieto_cut_corners_eq_a3() {
-        // 2h = 500, 2b = 246, 2b₂ = 160: η = 25.2 %.
-        let mu = mu_pivots(250.0, 123.0, -80.0, 80.0);
-        assert_eq!(mu, mu_cut_corners(250.0, 123.0, 80.0));
-        assert_eq!(round_to(100.0 * energy_loss(mu), 1), 25.2);
-    }
-
-    #[test]
-    fn eq_a3_at_the_corners_is_housner() {
-        for (h, b) in [(1.0, 0.5), (1.5, 0.5), (2.0, 0.5), (3.7, 0.4), (0.6, 1.0)] {
-            let a3 = mu_pivots(h, b, -b, b);
-            let eq1 = housner_mu(h, b);
-            assert!(
-                (a3 - eq1).abs() <= 4.0 * f64::EPSILON,
-                "{h} {b}: {a3} vs {eq1}"
-            );
+    /// Height of the centre of mass over the block's height.
+    pub fn centre_height_ratio(self) -> f64 {
+        match self {
+            MassDistribution::Uniform => 0.5,
+            MassDistribution::Top => 1.0,
+            MassDistribution::General {
+                centre_height_ratio,
+                ..
+            } => centre_height_ratio,
         }
     }
 
-    #[test]
-    fn a5_a6_a7_a8() {
-        let (h, b, b2) = (1.2, 0.4, 0.3);
-        // A5: corner to middle keeps the angular velocity.
-        assert_eq!(mu_pivots(h, b, -b2, 0.0), 1.0);
-        // A6 then A7.
-        let a7 = mu_pivots(h, b, -b2, 0.0) * mu_pivots(h, b, 0.0, b2);
-        assert!((a7 - mu_two_impacts(h, b, b2)).abs() < 1e-15);
-        // A8: b2 = b.
-        let a8 = (2.0 * h * h + 0.5 * b * b) / (2.0 * h * h + 2.0 * b * b);
-        assert!((mu_two_impacts(h, b, b) - a8).abs() < 1e-15);
-    }
-
-    #[test]
-    fn consecutive_impacts_chain() {
-        for hb in [1.0, 2.0, 3.0, 5.0, 10.0] {
-            let (h, b) = (hb, 1.0);
-            // One impact is Housner, two impacts (one bump) are Eq. A8.
-            assert!((mu_consecutive_impacts(h, b, b, 1) - housner_mu(h, b)).abs() < 1e-15);
-            assert!((mu_consecutive_impacts(h, b, b, 2) - mu_two_impacts(h, b, b)).abs() < 1e-15);
-            assert_eq!(mu_bumps(h, b, b, 1), mu_consecutive_impacts(h, b, b, 2));
-            assert_eq!(mu_bumps(h, b, b, 0), mu_consecutive_impacts(h, b, b, 1));
-            // Increases with the number of impacts and tends to 1 (Fig. 12): 1 − μ ~ c / n.
-            let mut previous = 0.0;
-            for n in 1..=200 {
-                let mu = mu_consecutive_impacts(h, b, b, n);
-                assert!(mu > previous && mu < 1.0, "h/b = {hb}, n = {n}: {mu}");
-                previous = mu;
-            }
-            let gap_100 = 1.0 - mu_consecutive_impacts(h, b, b, 100);
-            let gap_1000 = 1.0 - mu_consecutive_impacts(h, b, b, 1000);
-            assert!(gap_100 < 0.01, "{gap_100}");
-            assert!(gap_1000 < 0.2 * gap_100, "{gap_1000} vs {gap_100}");
-        }
-    }
-
-    #[test]
-    fn stocky_block_lands_flat() {
-        // h/b < 1/√2: Eq. 1 is negative; the chained model stops the block.
-        assert!(housner_mu(0.5, 1.0) < 0.0);
-        assert_eq!(mu_consecutive_impacts(0.5, 1.0, 1.0, 1), 0.0);
-    }
-
-    #[test]
-    fn normalised_critical_impulse_printed_values() {
-        // Thesis after Eq. 18: H/B = 3 → 1.013, H/B = 8 → 1.002.
-        for (h_over_b, printed) in [(3.0, 1.013), (8.0, 1.002)] {
-            let delta = slenderness_angle(1.0, h_over_b);
-            assert_eq!(round_to(normalised_critical_impulse(delta), 3), printed);
-        }
-    }
-
-    #[test]
-    fn eq_18_follows_from_eq_3_13_17() {
-        let g = 9.81;
-        for (b, h, alpha) in [(1.0, 3.0, ALPHA_UNIFORM), (0.5, 4.0, 1.0), (2.0, 12.0, 1.2)] {
-            let delta = slenderness_angle(b, h);
-            let r = corner_distance(b, h);
-            let p = frequency_parameter(r, alpha, g);
-            let i = p * critical_impulse(r, alpha, g, delta) / a_p_min(delta, g);
-            assert!((i - normalised_critical_impulse(delta)).abs() < 1e-13);
-        }
-    }
-
-    #[test]
-    fn frequency_parameter_matches_inertia_definition() {
-        // p = √(m R g / θ) with θ = α m R² (Eq. 13, 22), and the uniform block's α is 4/3:
-        // θ_corner = m (B² + H²)/12 + m R² = (4/3) m R².
-        let (b, h, m, g) = (1.0, 12.0, 7.0, 9.81);
-        let r = corner_distance(b, h);
-        let theta = m * (b * b + h * h) / 12.0 + m * r * r;
-        assert!((theta - corner_inertia(m, r, ALPHA_UNIFORM)).abs() < 1e-12 * theta);
-        let p = (m * r * g / theta).sqrt();
-        assert!((p - frequency_parameter(r, ALPHA_UNIFORM, g)).abs() < 1e-14);
-        assert!((a_p_min(slenderness_angle(b, h), g) - g / 12.0).abs() < 1e-15);
-    }
-
-    #[test]
-    fn housner_period_limits() {
-        let (r, alpha, g, delta) = (2.0, ALPHA_UNIFORM, 9.81, 0.2);
-        assert_eq!(housner_period(r, alpha, g, delta, 0.0), 0.0);
-        let mut previous = 0.0;
-        for k in 1..100 {
-            let t = housner_period(r, alpha, g, delta, delta * f64::from(k) / 100.0);
-            assert!(t > previous);
-            previous = t;
-        }
-        assert!(housner_period(r, alpha, g, delta, delta * (1.0 - 1e-12)) > 4.0 * previous);
-        assert!(housner_period(r, alpha, g, delta, delta).is_nan());
-        assert!(housner_period(r, alpha, g, delta, -0.1).is_nan());
-        // T ∝ 1/p for a given amplitude (Eq. 15).
-        let ratio =
-            housner_period(4.0 * r, alpha, g, delta, 0.1) / housner_period(r, alpha, g, delta, 0.1);
-        assert!((ratio - 2.0).abs() < 1e-14);
+    /// `α` and the centre height ratio finite and positive.
+    pub(crate) fn validate(self) -> Result<(), InvalidValue> {
+        positive("alpha", self.alpha())?;
+        positive("centre_height_ratio", self.centre_height_ratio())?;
+        Ok(())
     }
 }
+
+/// The equivalent single block: a symmetric rigid block of full width `B`, full height `H` and a
+/// mass distribution, described by the quantities of thesis Chapters 1 and 5 — the centre of
+/// mass at height `h_c` on the axis, `tan δ = (B/2) / h_c`, the corner distance
+/// `R = √((B/2)² + h_c²)`, `θ = α m R²` about a corner (Eq. 22), `p = √(g / (α R))` (Eq. 13),
+/// `a_p,min = g tan δ` (Eq. 3) and `i_cr = √(2 / (1 + cos δ))` (Eq. 18). For a uniform block
+/// `tan δ = B/H` and `R = ½√(B² + H²)` (Fig. 7).
+///
+/// It is the pier of the design method (thesis 5.3.4) and the axes of the overturning spectra:
+/// a column is described by the uniform block of its bottom width and total height
+/// ([`EquivalentBlock::of_column`]), the column "has the same aspect ratio" (Fig. 40, 43).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct EquivalentBlock {
+    /// Full width `B` \[m\].
+    pub width: f64,
+    /// Full height `H` \[m\].
+    pub height: f64,
+    /// Mass distribution (fixes `α` and the centre of mass).
+    pub mass: MassDistribution,
+}
+
+impl EquivalentBlock {
+    /// A validated block: width, height, `α` and centre height must be finite and positive.
+    pub fn new(
+        width: f64,
+        height: f64,
+        mass: MassDistribution,
+    ) -> Result<EquivalentBlock, InvalidValue> {
+        let block = EquivalentBlock {
+            width,
+            height,
+            mass,
+        };
+        block.validate()?;
+        Ok(block)
+    }
+
+    /// A uniform block of full width `B` and height `H` (not validated).
+    pub fn uniform(width: f64, height: f64) -> EquivalentBlock {
+        EquivalentBlock {
+            width,
+            height,
+            mass: MassDistribution::Uniform,
+        }
+    }
+
+    /// The uniform block of a column's bottom width and total height: the axes of its
+    /// overturning curves and spectra. Exact for a single uniform block.
+    pub fn of_column(column: &Column) -> EquivalentBlock {
+        EquivalentBlock::uniform(column.blocks()[0].width, column.total_height())
+    }
+
+    /// The uniform block of size `R = ½√(B² + H²) = size` \[m\] and slenderness
+    /// `H/B = slenderness` (not validated): the blocks of an OAS size grid.
+    pub fn of_size(size: f64, slenderness: f64) -> EquivalentBlock {
+        let width = 2.0 * size / (1.0 + slenderness * slenderness).sqrt();
+        EquivalentBlock::uniform(width, slenderness * width)
+    }
+
+    /// Checks width, height, `α` and the centre height: finite and positive.
+    pub fn validate(&self) -> Result<(), InvalidValue> {
+        positive("width", self.width)?;
+        positive("height", self.height)?;
+        self.mass.validate()
+    }
+
+    /// Height of the centre of mass `h_c` \[m\].
+    pub fn centre_height(&self) -> f64 {
+        self.mass.centre_height_ratio() * self.height
+    }
+
+    /// `tan δ = (B/2) / h_c` (`B/H` for a uniform block, Fig. 7).
+    pub fn tan_delta(&self) -> f64 {
+        0.5 * self.width / self.centre_height()
+    }
+
+    /// Slenderness angle `δ` \[rad\].
+    pub fn slenderness_angle(&self) -> f64 {
+        self.tan_delta().atan()
+    }
+
+    /// Distance `R` from a bottom corner to the centre of mass \[m\].
+    pub fn corner_distance(&self) -> f64 {
+        (0.5 * self.width).hypot(self.centre_height())
+    }
+
+    /// `α` of Eq. 22.
+    pub fn alpha(&self) -> f64 {
+        self.mass.alpha()
+    }
+
+    /// Frequency parameter `p = √(g / (α R))` \[1/s\] (Eq. 13, 22).
+    pub fn frequency_parameter(&self, g: f64) -> f64 {
+        frequency_parameter(self.corner_distance(), self.alpha(), g)
+    }
+
+    /// `a_p,min = g tan δ` \[m/s²\] (Eq. 3).
+    pub fn a_p_min(&self, g: f64) -> f64 {
+        g * self.tan_delta()
+    }
+
+    /// `i_cr = √(2 / (1 + cos δ))` (Eq. 18), `cos δ = h_c / R`.
+    pub fn normalised_critical_impulse(&self) -> f64 {
+        (2.0 / (1.0 + self.centre_height() / self.corner_distance())).sqrt()
+    }
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,5 +1,6 @@
 use super::*;
 use crate::ground::records::{bundled_record, Record};
+use crate::model::single_block::EquivalentBlock;
 
 /// A small OAS grid for tests: 16 levels from 1 to 10, 40 sizes from 1000 m to 0.1 m.
 fn small_grid() -> OasOptions {
@@ -14,11 +15,11 @@ fn small_grid() -> OasOptions {
 fn column_of_size_has_the_requested_axes() {
     for n in [1, 2, 3] {
         let c = column_of_size(6.0, 12.0, n).unwrap();
-        let m = Monolith::of(&c, 9.81);
-        assert!((m.r - 6.0).abs() < 1e-12);
+        let m = EquivalentBlock::of_column(&c);
+        assert!((m.corner_distance() - 6.0).abs() < 1e-12);
         assert!((m.height / m.width - 12.0).abs() < 1e-12);
-        assert!((m.a_p_min - 9.81 / 12.0).abs() < 1e-12);
-        assert!((uplift_acceleration(&c, 9.81) - m.a_p_min).abs() < 1e-12);
+        assert!((m.a_p_min(9.81) - 9.81 / 12.0).abs() < 1e-12);
+        assert!((c.static_uplift_acceleration(9.81) - m.a_p_min(9.81)).abs() < 1e-12);
     }
     assert!(column_of_size(0.0, 12.0, 1).is_err());
     assert!(column_of_size(1.0, 12.0, 0).is_err());
@@ -39,10 +40,13 @@ fn grids_match_the_thesis() {
 #[test]
 fn half_sine_oc_tends_to_a_p_min_for_long_pulses() {
     let column = column_of_size(1.0, 12.0, 1).unwrap();
-    let m = Monolith::of(&column, 9.81);
+    let m = EquivalentBlock::of_column(&column);
     let levels = linear_levels(1.0, 3.0, 21); // step 0.1
-    let a_p: Vec<f64> = levels.iter().map(|l| l * m.a_p_min).collect();
-    let t_p: Vec<f64> = [2.0, 5.0, 20.0].iter().map(|x| x / m.p).collect();
+    let a_p: Vec<f64> = levels.iter().map(|l| l * m.a_p_min(9.81)).collect();
+    let t_p: Vec<f64> = [2.0, 5.0, 20.0]
+        .iter()
+        .map(|x| x / m.frequency_parameter(9.81))
+        .collect();
     let oc = overturning_curve(
         &column,
         PulseShape::half_sine(),
@@ -70,9 +74,10 @@ fn half_sine_oc_tends_to_a_p_min_for_long_pulses() {
 #[test]
 fn half_sine_short_pulse_obeys_the_critical_impulse() {
     let column = column_of_size(1.0, 12.0, 1).unwrap();
-    let m = Monolith::of(&column, 9.81);
-    let t_p = 0.01 / m.p;
-    let i_cr = m.i_cr * m.a_p_min / m.p;
+    let m = EquivalentBlock::of_column(&column);
+    let (p, a_p_min) = (m.frequency_parameter(9.81), m.a_p_min(9.81));
+    let t_p = 0.01 / p;
+    let i_cr = m.normalised_critical_impulse() * a_p_min / p;
     let a_cr = i_cr * std::f64::consts::PI / (2.0 * t_p);
     let options = SweepOptions {
         tail: 8.0,
@@ -206,11 +211,12 @@ fn t1_converged_in_dt() {
     assert!(hi / lo <= 1.10, "{t1:?}");
 }
 
-/// Verdicts of every point of a grid with and without [`SimulationOptions::stop_when_safe`].
+/// Verdicts of every point of a grid with and without
+/// [`crate::driver::StoppingOptions::stop_when_safe`].
 fn verdicts_with_and_without_energy_bound(record: &Record, grid: &OasOptions) {
     let mut full = grid.clone();
-    full.sweep.simulation.stop_when_safe = false;
-    assert!(grid.sweep.simulation.stop_when_safe);
+    full.sweep.simulation.stopping.stop_when_safe = false;
+    assert!(grid.sweep.simulation.stopping.stop_when_safe);
     let mut unsafe_points = 0;
     for &level in &grid.levels {
         for &size in &grid.sizes {
@@ -236,7 +242,7 @@ fn oas_energy_bound_changes_nothing() {
     };
     verdicts_with_and_without_energy_bound(&record, &grid);
     let mut full = small_grid();
-    full.sweep.simulation.stop_when_safe = false;
+    full.sweep.simulation.stopping.stop_when_safe = false;
     assert_eq!(
         oas(&record, &small_grid(), None).unwrap(),
         oas(&record, &full, None).unwrap()
@@ -266,4 +272,24 @@ fn oas_energy_bound_changes_nothing_on_shared_records() {
         };
         verdicts_with_and_without_energy_bound(&record, &grid);
     }
+}
+
+#[test]
+fn invalid_options_name_the_field() {
+    let record = bundled_record();
+    let message = |o: &OasOptions| oas(&record, o, None).unwrap_err().to_string();
+    let mut o = small_grid();
+    o.levels[3] = -1.0;
+    assert_eq!(
+        message(&o),
+        "levels[3] = -1.0: must be a finite number greater than zero"
+    );
+    let mut o = small_grid();
+    o.sweep.time_step.block_fraction = f64::NAN;
+    assert!(message(&o).starts_with("time_step.block_fraction = NaN"));
+    let mut o = small_grid();
+    o.sizes.reverse();
+    assert!(message(&o).starts_with("sizes: "));
+    let e = column_of_size(1.0, 12.0, 0).unwrap_err().to_string();
+    assert!(e.starts_with("n_blocks = 0: "), "{e}");
 }

@@ -1,6 +1,8 @@
-//! Shared by the integration tests that compile C against `include/rocking.h` and the cdylib.
+//! Shared by the integration tests: compiling C against `include/rocking.h` and the cdylib
+//! (here), the harness's scenes (`scenes`), comparisons with printed numbers (`compare`).
 #![allow(dead_code)]
 
+pub mod compare;
 pub mod scenes;
 
 use std::path::{Path, PathBuf};
@@ -61,6 +63,7 @@ pub fn c_examples() -> Vec<String> {
 pub fn success_marker(source: &str) -> &'static str {
     match source {
         "c_examples/minimal.c" => "all thesis values reproduced",
+        "c_examples/element_skeleton.c" => "done: 3 events",
         "c_examples/opensees_style_harness.c" => "harness: all self-checks passed",
         "c_examples/stiff_blocks.c" => "stiff blocks: all self-checks passed",
         _ => "",

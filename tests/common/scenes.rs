@@ -4,7 +4,8 @@
 use std::collections::BTreeMap;
 
 use rocking::driver::{
-    simulate, EventKind, EventLocator, Integrator, SimulationOptions, StopReason,
+    simulate, EventKind, EventLocator, Integrator, PhysicsOptions, SimulationOptions,
+    SteppingOptions, StopReason, StoppingOptions,
 };
 use rocking::ground::{FnMotion, GroundMotion, NoMotion};
 use rocking::model::column::{Block, Column};
@@ -98,26 +99,35 @@ pub fn driver_scene(name: &str, dt: f64) -> SceneResult {
     };
     let pi = std::f64::consts::PI;
     let mut opts = SimulationOptions {
-        dt,
-        integrator: Integrator::Newmark,
-        locator: EventLocator::Hermite,
-        friction: f64::INFINITY,
-        gravity: 9.81,
-        exact_velocity_terms: false,
-        continue_until_fallen: false,
+        stepping: SteppingOptions {
+            dt,
+            integrator: Integrator::Newmark,
+            locator: EventLocator::Hermite,
+            ..SteppingOptions::default()
+        },
+        physics: PhysicsOptions {
+            friction: f64::INFINITY,
+            gravity: 9.81,
+            exact_velocity_terms: false,
+            ..PhysicsOptions::default()
+        },
+        stopping: StoppingOptions {
+            continue_until_fallen: false,
+            ..StoppingOptions::default()
+        },
         ..SimulationOptions::default()
     };
     let (column, motion): (Column, Box<dyn GroundMotion>) = match name {
         "a" => {
-            opts.duration = 3.0;
-            opts.initial_angles = Some(vec![0.15]);
-            opts.model.n_impacts = 1;
+            opts.stopping.duration = 3.0;
+            opts.initial.angles = Some(vec![0.15]);
+            opts.physics.model.n_impacts = 1;
             let col = Column::new(vec![Block::rectangle(0.2, 0.6, 100.0)]).unwrap();
             (col, Box::new(NoMotion))
         }
         "b" => {
-            opts.duration = 3.0;
-            opts.model.n_impacts = 1;
+            opts.stopping.duration = 3.0;
+            opts.physics.model.n_impacts = 1;
             let (ap, tp) = (1.5 * 9.81 / 3.0, 0.3);
             let col = Column::new(vec![Block::rectangle(0.2, 0.6, 100.0)]).unwrap();
             let m = FnMotion(
@@ -133,15 +143,15 @@ pub fn driver_scene(name: &str, dt: f64) -> SceneResult {
             (col, Box::new(m))
         }
         "c" => {
-            opts.duration = 1.5;
-            opts.initial_angles = Some(vec![0.0, -0.153]);
-            opts.model.n_impacts = 2;
+            opts.stopping.duration = 1.5;
+            opts.initial.angles = Some(vec![0.0, -0.153]);
+            opts.physics.model.n_impacts = 2;
             let b = granite(0.1, 0.3, 0.2);
             (Column::new(vec![b, b]).unwrap(), Box::new(NoMotion))
         }
         "d" => {
-            opts.duration = 2.0;
-            opts.model.n_impacts = 2;
+            opts.stopping.duration = 2.0;
+            opts.physics.model.n_impacts = 2;
             let (d, period) = (0.045, 0.6);
             let w = 2.0 * pi / period;
             let b = granite(0.1, 0.2, 0.3);

@@ -1,15 +1,19 @@
 #!/usr/bin/env bash
 # Real OpenSees (openseespy) integrates a single block and the thesis 4.2 two-block column on
-# compression-only contact springs; at every impact the rocking library (through ctypes) decides
-# the new configuration and velocities from OpenSees's own mass matrix, and at every opening it
-# must pick what OpenSees did. Compared with Housner's exact ratio and with the C harness
+# compression-only contact springs; at every impact the rocking library (the Python package's
+# coupling module rocking.opensees) decides the new configuration and velocities from OpenSees's
+# own mass matrix, and at every opening it must pick what OpenSees did. Compared with Housner's exact ratio and with the C harness
 # (c_examples/opensees_style_harness.c, itself checked against the Rust driver by
 # tests/harness_vs_driver.rs, thesis Eq. 6) and with the Rust driver on the exact Lagrangian
 # equations, which OpenSees's corotational blocks also integrate. Exits 0 on success.
 #
-# openseespy is a test-only dependency (its licence forbids redistribution): it lives in
-# tests/opensees/.venv, created here, and nowhere in the library. openseespy 3.7.1.2 has wheels
-# for Python 3.11 (3.8 needs Python >= 3.12); set PYTHON to choose the interpreter.
+# Then python/tests/test_opensees.py (pytest): `python -m rocking.opensees SCENE --compare` on the
+# single block and the bundled two-block scene against the rigid driver.
+#
+# openseespy is an optional dependency (its licence forbids redistribution): it lives in
+# tests/opensees/.venv, created here, with the package installed as `pip install ./python[opensees]`,
+# and nowhere in the library. openseespy 3.7.1.2 has wheels for Python 3.11 (3.8 needs
+# Python >= 3.12); set PYTHON to choose the interpreter.
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 root="$(cd "$here/../.." && pwd)"
@@ -18,7 +22,8 @@ py="${PYTHON:-$(command -v python3.11 || command -v python3)}"
 if [ ! -x "$here/.venv/bin/python" ]; then
     "$py" -m venv "$here/.venv"
 fi
-"$here/.venv/bin/python" -m pip install -q --disable-pip-version-check openseespy==3.7.1.2
+"$here/.venv/bin/python" -m pip install -q --disable-pip-version-check openseespy==3.7.1.2 pytest
+"$here/.venv/bin/python" -m pip install -q --disable-pip-version-check "$root/python[opensees]"
 lib="$root/target/release/librocking.so"
 [ -f "$lib" ] || (cd "$root" && cargo build --release)
 mkdir -p "$root/target/c_examples"
@@ -47,8 +52,15 @@ JSON
 "$cli" simulate "$exact/scene.json" --out "$exact" > /dev/null
 # OpenSees prints a solver warning when GimmeMCK's analyze() meets the singular mass matrix
 # (massless rotations) and "Process 0 Terminating" at exit: both harmless, filtered.
-"$here/.venv/bin/python" "$here/rocking_opensees.py" "$lib" "$exe" "$exact/events.jsonl" 2>&1 \
-    | grep -v -e "FullGenLinLapackSolver::solve() -factorization failed" -e "^Process 0 Terminating" \
-    ; status=${PIPESTATUS[0]}
+filter() { grep -v -e "FullGenLinLapackSolver::solve() -factorization failed" -e "^Process 0 Terminating" || true; }
+set +e
+"$here/.venv/bin/python" "$here/rocking_opensees.py" "$exe" "$exact/events.jsonl" 2>&1 | filter
+status=${PIPESTATUS[0]}
+# pytest from the root (not python/, whose rocking/ folder has no compiled extension).
+(cd "$root" && ROCKING_CLI="$cli" ROCKING_LIB="$lib" "$here/.venv/bin/python" -m pytest -q -p no:cacheprovider \
+    python/tests/test_opensees.py 2>&1 | filter; exit "${PIPESTATUS[0]}")
+pytest_status=$?
+set -e
+[ "$status" -eq 0 ] && status=$pytest_status
 echo "tests/opensees/run.sh: exit ${status} after ${SECONDS} s"
 exit "$status"

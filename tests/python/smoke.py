@@ -4,9 +4,11 @@
 Usage: python3 tests/python/smoke.py [LIB_PATH]
 Without an argument it loads target/release/librocking.so. Runs the thesis's examples through
 both entry points and checks that every error class returns its code with the arrays untouched.
-Exits 0 on success.
+The cases and the thesis's numbers come from samples.json beside this file, generated from
+src/samples.rs (tests/c_abi.rs fails when it drifts). Exits 0 on success.
 """
 import ctypes
+import json
 import math
 import sys
 from pathlib import Path
@@ -68,8 +70,8 @@ def int8s(values):
     return (ctypes.c_int8 * len(values))(*values)
 
 
-def two_block_mass(lib):
-    w, h, m = doubles([0.1, 0.1]), doubles([0.3, 0.3]), doubles([15.0, 15.0])
+def two_block_mass(lib, case):
+    w, h, m = doubles(case["width"]), doubles(case["height"]), doubles(case["block_mass"])
     mass = doubles([0.0] * 16)
     code = lib.rocking_column_mass_matrix(2, w, h, m, None, None, None, 0.0, 9.81, mass, None)
     assert code == 0, lib.rocking_last_error_message()
@@ -97,24 +99,28 @@ def main():
         failures += 0 if ok else 1
         passed += 1 if ok else 0
 
-    mass = two_block_mass(lib)
-    check("Eq. 10 M[0][2] = 3.550", abs(mass[2] - 3.55) < 5e-4)
-    for n_imp, rates, loss in [(1, (-0.1079, -0.5965), 25.6), (2, (-0.0539, -0.7983), 13.9)]:
-        code, st, v, rep = impact(lib, mass, [0, 1], [0, 0, 0, -1.0], 1, RockingOptions(n_imp, 0, 1e-12))
+    samples = json.loads((Path(__file__).resolve().parent / "samples.json").read_text())
+    case = samples["two_block_impact"]
+    mass = two_block_mass(lib, case)
+    eq10 = case["thesis_eq10_mass"]
+    check(f"Eq. 10 mass matrix to the printed digits ({eq10[2]:.3f} ...)",
+          all(abs(got - want) < 5e-4 for got, want in zip(mass, eq10)))
+    for answer in case["answers"]:
+        n_imp, rates, loss = answer["n_impacts"], answer["rates"], answer["loss_percent"]
+        code, st, v, rep = impact(lib, mass, case["status"], case["velocity"], case["closing"],
+                                  RockingOptions(n_imp, 0, 1e-12))
         got_loss = 100 * (1 - rep.kinetic_after / rep.kinetic_before)
-        check(f"{n_imp} impact(s): thesis rates {rates}, loss {loss} %",
+        check(f"{n_imp} impact(s): thesis rates {tuple(rates)}, loss {loss} %",
               code == 0 and st == [-1, -1] and abs(v[0] - rates[0]) < 5e-5 and abs(v[1] - rates[1]) < 5e-5
               and abs(got_loss - loss) < 0.05, f"-> code {code}, rates ({v[0]:.4f}, {v[1]:.4f}), loss {got_loss:.2f} %")
 
     # Opening (thesis Fig. 19e): horizontal force of 10 x one block's weight at the top.
-    load_vec = doubles([0.0] * 4)
-    w, h, m = doubles([0.1, 0.1]), doubles([0.3, 0.3]), doubles([15.0, 15.0])
-    lib.rocking_column_mass_matrix(2, w, h, m, None, None, None, 0.0, 9.81, doubles([0.0] * 16), load_vec)
-    pivots_y = [0.0, 0.3, 0.0, 0.3]
-    q = [load_vec[a] - (0.6 - pivots_y[a]) * 10 * 15 * 9.81 for a in range(4)]
+    push = samples["two_block_top_push"]
     st, acc, rep = int8s([0, 0]), doubles([0.0] * 4), RockingReport()
-    code = lib.rocking_opening_model(2, doubles(mass), doubles(q), st, acc, None, ctypes.byref(rep))
-    check("opening Fig. 19e: bottom left, top right", code == 0 and list(st) == [1, -1] and rep.changed == 1,
+    code = lib.rocking_opening_model(2, doubles(push["mass"]), doubles(push["load"]), st, acc, None,
+                                     ctypes.byref(rep))
+    check(f"opening Fig. 19e: status {push['expected_status']}",
+          code == 0 and list(st) == push["expected_status"] and rep.changed == 1,
           f"-> code {code}, status {list(st)}")
 
     # Every error class: the code, a message, and the arrays untouched.

@@ -1,0 +1,26 @@
+/* Inputs and known answers of the C examples: GENERATED from src/samples.rs by tests/c_abi.rs
+ * -- do not edit (regenerate: make header). */
+#ifndef ROCKING_SAMPLES_H
+#define ROCKING_SAMPLES_H
+#define SAMPLE_IMPACT_N_BLOCKS 2
+#define SAMPLE_IMPACT_WIDTH {0.1, 0.1}
+#define SAMPLE_IMPACT_HEIGHT {0.3, 0.3}
+#define SAMPLE_IMPACT_BLOCK_MASS {15.0, 15.0}
+#define SAMPLE_IMPACT_STATUS {0, 1}
+#define SAMPLE_IMPACT_VELOCITY {0.0, 0.0, 0.0, -1.0}
+#define SAMPLE_IMPACT_CLOSING 1
+#define SAMPLE_EQ10_M02 3.55
+#define SAMPLE_IMPACT1_RATE0 (-0.1079)
+#define SAMPLE_IMPACT1_RATE1 (-0.5965)
+#define SAMPLE_IMPACT1_LOSS 25.6
+#define SAMPLE_IMPACT2_RATE0 (-0.0539)
+#define SAMPLE_IMPACT2_RATE1 (-0.7983)
+#define SAMPLE_IMPACT2_LOSS 13.9
+#define SAMPLE_FREE_N_BLOCKS 2
+#define SAMPLE_FREE_WIDTH {0.1, 0.1}
+#define SAMPLE_FREE_HEIGHT {0.3, 0.3}
+#define SAMPLE_FREE_BLOCK_MASS {16.2, 16.2}
+#define SAMPLE_FREE_CONTACT_WIDTH {0.096, 0.096}
+#define SAMPLE_FREE_INITIAL_ANGLES {0.0, 0.153}
+#define SAMPLE_FREE_N_IMPACTS 2
+#endif

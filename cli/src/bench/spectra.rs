@@ -1,0 +1,176 @@
+//! `rocking bench spectra`: wall time of the overturning acceleration spectrum of records with
+//! the thesis's grid (80 levels × 120 sizes, H/B = 12, scan from the largest size), against the
+//! target of the issue (≤ 5 s per record on a 2-core machine). With `--compare`, each record is
+//! run a second time with every simulation run to its end (`--full-runs` of `rocking oas`): the
+//! speed ratio of the energy-bound stop measured in the same process, and a check that both
+//! spectra are identical.
+
+use std::fmt::Write as _;
+use std::path::PathBuf;
+use std::time::Instant;
+
+use clap::Args;
+use rocking::ground::records::{parse_at2, read_record, PlainFormat, Record};
+use rocking::spectra::{self, OasOptions};
+
+use crate::output::write_atomic;
+use crate::progress;
+
+/// Options of `rocking bench spectra`.
+#[derive(Args, Debug)]
+pub struct SpectraBenchArgs {
+    /// Records (.AT2 or plain text); none: the bundled synthetic record.
+    pub records: Vec<PathBuf>,
+    /// Run each record again with every simulation run to its end (no energy-bound stop):
+    /// the speed ratio, and a check that both spectra are identical.
+    #[arg(long)]
+    pub compare: bool,
+    /// Also write the Markdown report to this file.
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// Threads (default: every core).
+    #[arg(long, value_parser = crate::commands::sweep::count)]
+    pub threads: Option<usize>,
+}
+
+/// One record's figures.
+struct Row {
+    name: String,
+    duration: f64,
+    dt: f64,
+    simulations: usize,
+    seconds: f64,
+    /// `(seconds, identical)` with full runs.
+    full: Option<(f64, bool)>,
+}
+
+fn bundled() -> Result<Record, String> {
+    parse_at2(
+        include_str!("../../../examples/records/synthetic.AT2"),
+        "synthetic (bundled)",
+    )
+    .map_err(|e| e.to_string())
+}
+
+fn timed_oas(record: &Record, options: &OasOptions) -> Result<(spectra::Oas, f64), String> {
+    let t0 = Instant::now();
+    let oas = spectra::oas(record, options, None).map_err(|e| e.to_string())?;
+    Ok((oas, t0.elapsed().as_secs_f64()))
+}
+
+/// Runs the benchmark and prints the report (Markdown) on stdout.
+pub fn run(args: &SpectraBenchArgs) -> Result<(), String> {
+    if let Some(n) = args.threads {
+        crate::commands::sweep::set_threads(n);
+    }
+    let mut records = Vec::new();
+    if args.records.is_empty() {
+        records.push(bundled()?);
+    }
+    for path in &args.records {
+        records.push(
+            read_record(path, &PlainFormat::default())
+                .map_err(|e| format!("{}: {e}", path.display()))?,
+        );
+    }
+    let options = OasOptions::default();
+    let mut full_options = options.clone();
+    full_options.sweep.simulation.stopping.stop_when_safe = false;
+    let bar = progress::bar(records.len() as u64, "OAS");
+    let mut rows = Vec::new();
+    for record in &records {
+        bar.set_message(record.name.clone());
+        let (oas, seconds) = timed_oas(record, &options)?;
+        let full = if args.compare {
+            let (whole, s) = timed_oas(record, &full_options)?;
+            Some((s, whole.levels == oas.levels))
+        } else {
+            None
+        };
+        rows.push(Row {
+            name: record.name.clone(),
+            duration: record.duration(),
+            dt: record.dt,
+            simulations: oas.simulations(),
+            seconds,
+            full,
+        });
+        bar.inc(1);
+    }
+    bar.finish_and_clear();
+    let text = report(&rows, rayon::current_num_threads());
+    print!("{text}");
+    if let Some(out) = &args.out {
+        write_atomic(out, text.as_bytes())?;
+    }
+    if rows.iter().any(|r| r.full.is_some_and(|(_, same)| !same)) {
+        return Err("the energy-bound stop changed an OAS (see the table)".into());
+    }
+    Ok(())
+}
+
+fn percentile(sorted: &[f64], q: f64) -> f64 {
+    let i = ((sorted.len() - 1) as f64 * q).round() as usize;
+    sorted[i]
+}
+
+fn report(rows: &[Row], threads: usize) -> String {
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "OAS with the thesis's grid (80 levels x 120 sizes, H/B = 12, scan), {threads} thread(s)\n"
+    );
+    let compare = rows.iter().any(|r| r.full.is_some());
+    if compare {
+        s.push_str(
+            "| record | duration (s) | dt (s) | simulations | wall (s) | full runs (s) | ratio | same OAS |\n\
+             |---|---:|---:|---:|---:|---:|---:|---|\n",
+        );
+    } else {
+        s.push_str(
+            "| record | duration (s) | dt (s) | simulations | wall (s) |\n|---|---:|---:|---:|---:|\n",
+        );
+    }
+    for r in rows {
+        let _ = write!(
+            s,
+            "| {} | {:.1} | {} | {} | {:.2} |",
+            r.name, r.duration, r.dt, r.simulations, r.seconds
+        );
+        if let Some((full, same)) = r.full {
+            let _ = write!(
+                s,
+                " {full:.2} | {:.2} | {} |",
+                full / r.seconds,
+                if same { "yes" } else { "**no**" }
+            );
+        }
+        s.push('\n');
+    }
+    let mut times: Vec<f64> = rows.iter().map(|r| r.seconds).collect();
+    times.sort_by(f64::total_cmp);
+    let over = times.iter().filter(|&&t| t > 5.0).count();
+    let _ = writeln!(
+        s,
+        "\n{} record(s): median {:.2} s, 90th percentile {:.2} s, slowest {:.2} s; {over} above 5 s.",
+        rows.len(),
+        percentile(&times, 0.5),
+        percentile(&times, 0.9),
+        times[times.len() - 1],
+    );
+    if compare {
+        let mut ratios: Vec<f64> = rows
+            .iter()
+            .filter_map(|r| r.full.map(|(f, _)| f / r.seconds))
+            .collect();
+        ratios.sort_by(f64::total_cmp);
+        let _ = writeln!(
+            s,
+            "Speed-up of the energy-bound stop (full runs / default): smallest {:.2}, median {:.2}, largest {:.2}.",
+            ratios[0],
+            percentile(&ratios, 0.5),
+            ratios[ratios.len() - 1]
+        );
+    }
+    s
+}

@@ -1,0 +1,361 @@
+//! `rocking oas`: the overturning acceleration spectrum of a record (thesis Fig. 36, 37, 43)
+//! through `rocking::spectra::oas`, its summary (t₁ of Eq. 20, the Eq. 28 fit) and charts;
+//! `--merge` rebuilds the spectrum from level shards.
+
+use std::path::PathBuf;
+use std::time::Instant;
+
+use clap::Args;
+use rocking::spectra::{self, Oas, OasLevel, SizeSearch};
+use serde::{Deserialize, Serialize};
+
+use super::sweep::{OasGridArgs, Shard, SimulationArgs};
+use crate::output::{print_json, read_json};
+use crate::plot::{Chart, Scale, Series, Style, COLORS};
+use crate::progress;
+
+/// Options of `rocking oas`.
+#[derive(Args, Debug)]
+pub struct OasArgs {
+    /// The record (.AT2 in g, or plain text in m/s²).
+    #[arg(required_unless_present = "merge")]
+    pub record: Option<PathBuf>,
+    /// Rebuild the OAS from the JSON of `--shard` runs instead of computing it.
+    #[arg(long, num_args = 1.., value_name = "SHARD.json", conflicts_with = "record")]
+    pub merge: Vec<PathBuf>,
+    #[command(flatten)]
+    pub grid: OasGridArgs,
+    #[command(flatten)]
+    pub simulation: SimulationArgs,
+    /// Only the levels k with k % n == i (merge the shards with --merge).
+    #[arg(long, default_value_t = Shard::WHOLE, value_name = "i/n")]
+    pub shard: Shard,
+    /// JSON (the default).
+    #[arg(long, conflicts_with = "csv")]
+    pub json: bool,
+    /// CSV instead of JSON: one row per level.
+    #[arg(long)]
+    pub csv: bool,
+    /// Write charts PREFIX-oas.svg (against p, Fig. 36), PREFIX-transformed.svg (against f,
+    /// Fig. 37) and PREFIX-size.svg (against the size R, log axis).
+    #[arg(long, value_name = "PREFIX")]
+    pub svg: Option<PathBuf>,
+    /// With --svg: also write the charts as PNG.
+    #[arg(long, requires = "svg")]
+    pub png: bool,
+}
+
+/// Runs the command.
+pub fn run(a: &OasArgs) -> Result<(), String> {
+    let t0 = Instant::now();
+    let result = match &a.record {
+        None => {
+            let parts: Vec<OasJson> = a
+                .merge
+                .iter()
+                .map(|p| read_json(p))
+                .collect::<Result<_, _>>()?;
+            merged(parts)?
+        }
+        Some(path) => {
+            let record = super::sweep::read(path)?;
+            let mut o = a.grid.options(&a.simulation);
+            o.levels = a.shard.keep(&o.levels);
+            let bar = progress::bar(o.levels.len() as u64, "OAS");
+            let tick = || bar.inc(1);
+            let r = spectra::oas(&record, &o, Some(&tick)).map_err(|e| e.to_string())?;
+            bar.finish_and_clear();
+            r
+        }
+    };
+    let seconds = t0.elapsed().as_secs_f64();
+    if a.csv {
+        println!("record,level,size,p,f,simulations");
+        for l in &result.levels {
+            let (size, p) = match l.largest_unsafe {
+                Some(i) => (
+                    result.sizes[i],
+                    result
+                        .block(result.sizes[i])
+                        .frequency_parameter(result.gravity),
+                ),
+                None => (f64::NAN, f64::NAN),
+            };
+            println!(
+                "{},{},{size},{p},{},{}",
+                result.record,
+                l.level,
+                p * l.level,
+                l.simulations
+            );
+        }
+    } else {
+        print_json(&OasJson::of(&result, seconds))?;
+    }
+    if let Some(prefix) = &a.svg {
+        for (name, chart) in charts(&result) {
+            let file = |ext: &str| {
+                let mut s = prefix.as_os_str().to_owned();
+                s.push(format!("-{name}.{ext}"));
+                PathBuf::from(s)
+            };
+            chart.write(&file("svg"))?;
+            if a.png {
+                chart.write(&file("png"))?;
+            }
+        }
+    }
+    Ok(())
+}
+
+/// One level of `oas --json`: the library's level and, when a size overturns, the largest
+/// unsafe one with its `p` and `f = p · level`.
+#[derive(Serialize, Deserialize)]
+struct Level {
+    #[serde(flatten)]
+    level: OasLevel,
+    size: Option<f64>,
+    p: Option<f64>,
+    f: Option<f64>,
+}
+
+/// The summary of an OAS, also a row of `rocking t1` (with the `f_min` point flattened).
+#[derive(Serialize, Deserialize)]
+pub struct Summary {
+    pub record: String,
+    pub t1: Option<f64>,
+    pub t1_prime: Option<f64>,
+    pub beta: Option<f64>,
+    pub f_min: Option<f64>,
+    pub level_at_f_min: Option<f64>,
+    pub size_at_f_min: Option<f64>,
+    pub simulations: usize,
+    /// Wall time of the run [s].
+    pub seconds: f64,
+}
+
+impl Summary {
+    pub fn of(o: &Oas, seconds: f64) -> Summary {
+        let s = o.summary();
+        Summary {
+            record: o.record.clone(),
+            t1: s.t1,
+            t1_prime: s.fit.map(|f| f.t1_prime),
+            beta: s.fit.map(|f| f.beta),
+            f_min: s.f_min.map(|m| m.f),
+            level_at_f_min: s.f_min.map(|m| m.level),
+            size_at_f_min: s.f_min.map(|m| m.size),
+            simulations: s.simulations,
+            seconds,
+        }
+    }
+}
+
+/// How many boundary points each simplified spectrum predicts safe although they overturn.
+#[derive(Serialize, Deserialize)]
+struct Conservative {
+    eq21: usize,
+    eq21_approx: usize,
+    eq29: usize,
+    eq30: usize,
+}
+
+/// `oas --json`, and what `--merge` reads back.
+#[derive(Serialize, Deserialize)]
+struct OasJson {
+    record: String,
+    slenderness: f64,
+    blocks: usize,
+    impacts: u32,
+    search: SizeSearch,
+    gravity: f64,
+    sizes: Vec<f64>,
+    levels: Vec<Level>,
+    summary: Summary,
+    conservative: Option<Conservative>,
+}
+
+impl OasJson {
+    fn of(o: &Oas, seconds: f64) -> OasJson {
+        let levels = o
+            .levels
+            .iter()
+            .map(|l| {
+                let size = l.largest_unsafe.map(|i| o.sizes[i]);
+                let p = size.map(|r| o.block(r).frequency_parameter(o.gravity));
+                Level {
+                    level: *l,
+                    size,
+                    p,
+                    f: p.map(|p| p * l.level),
+                }
+            })
+            .collect();
+        let s = o.summary();
+        OasJson {
+            record: o.record.clone(),
+            slenderness: o.slenderness,
+            blocks: o.n_blocks,
+            impacts: o.n_impacts,
+            search: o.search,
+            gravity: o.gravity,
+            sizes: o.sizes.clone(),
+            levels,
+            summary: Summary::of(o, seconds),
+            conservative: s.t1.map(|t1| {
+                let c = o.check(t1, s.fit);
+                Conservative {
+                    eq21: c.eq21.len(),
+                    eq21_approx: c.eq21_approx.len(),
+                    eq29: c.eq29.len(),
+                    eq30: c.eq30.len(),
+                }
+            }),
+        }
+    }
+}
+
+/// Rebuilds an OAS from the `oas --json` outputs of level shards: their levels, in level order,
+/// on the first one's grid and settings.
+fn merged(parts: Vec<OasJson>) -> Result<Oas, String> {
+    let mut levels: Vec<OasLevel> = parts
+        .iter()
+        .flat_map(|p| p.levels.iter().map(|l| l.level))
+        .collect();
+    levels.sort_by(|a, b| a.level.total_cmp(&b.level));
+    let first = parts.into_iter().next().ok_or("nothing to merge")?;
+    Ok(Oas {
+        record: first.record,
+        slenderness: first.slenderness,
+        n_blocks: first.blocks,
+        n_impacts: first.impacts,
+        search: first.search,
+        sizes: first.sizes,
+        levels,
+        gravity: first.gravity,
+    })
+}
+
+/// The charts of an OAS: against `p` (Fig. 36), against `f` (Fig. 37) and against the size.
+fn charts(o: &Oas) -> Vec<(&'static str, Chart)> {
+    let s = o.summary();
+    let b = o.boundary();
+    let i_cr = o.i_cr();
+    let lmax = o.levels.iter().map(|l| l.level).fold(1.0, f64::max);
+    let pmax = b.iter().map(|q| q.p).fold(1.0, f64::max) * 1.1;
+    let fmax = b.iter().map(|q| q.f).fold(1.0, f64::max) * 1.1;
+    let (rmin, rmax) = o
+        .sizes
+        .iter()
+        .fold((f64::INFINITY, 0.0_f64), |(lo, hi), &r| {
+            (lo.min(r), hi.max(r))
+        });
+    let ps: Vec<f64> = (1..=400).map(|k| pmax * k as f64 / 400.0).collect();
+    let rs: Vec<f64> = (0..=400)
+        .map(|k| rmin * (rmax / rmin).powf(k as f64 / 400.0))
+        .collect();
+    let dots = |points: Vec<(f64, f64)>| Series {
+        name: "largest unsafe size".into(),
+        points,
+        style: Style::Points,
+        color: COLORS[0],
+    };
+    let mut by_p = vec![dots(b.iter().map(|q| (q.p, q.level)).collect())];
+    let mut by_f = vec![dots(b.iter().map(|q| (q.f, q.level)).collect())];
+    let mut by_r = vec![dots(b.iter().map(|q| (q.size, q.level)).collect())];
+    if let Some(t1) = s.t1 {
+        let eq21 = |p: f64| rocking::design::simplified_oas(p, t1, i_cr);
+        let name = format!("Eq. 21, t1 = {t1:.3} s");
+        let curve = |points: Vec<(f64, f64)>| Series {
+            name: name.clone(),
+            points,
+            style: Style::Dashed,
+            color: COLORS[1],
+        };
+        by_p.push(curve(ps.iter().map(|&p| (p, eq21(p))).collect()));
+        by_r.push(curve(
+            rs.iter()
+                .map(|&r| (r, eq21(o.block(r).frequency_parameter(o.gravity))))
+                .collect(),
+        ));
+        by_f.push(Series {
+            name: format!("f_min = i_cr / t1 (Eq. 20), t1 = {t1:.3} s"),
+            points: vec![(i_cr / t1, 1.0), (i_cr / t1, lmax)],
+            style: Style::Dashed,
+            color: COLORS[1],
+        });
+        if let Some(fit) = s.fit {
+            let eq30 = |p: f64| rocking::design::improved_oas_eq30(p, t1, fit.t1_prime, fit.beta);
+            let name = format!(
+                "Eq. 30, t1' = {:.3} s, beta = {:.2}",
+                fit.t1_prime, fit.beta
+            );
+            let curve = |points: Vec<(f64, f64)>| Series {
+                name: name.clone(),
+                points,
+                style: Style::Dashed,
+                color: COLORS[2],
+            };
+            by_p.push(curve(ps.iter().map(|&p| (p, eq30(p))).collect()));
+            by_r.push(curve(
+                rs.iter()
+                    .map(|&r| (r, eq30(o.block(r).frequency_parameter(o.gravity))))
+                    .collect(),
+            ));
+            by_f.push(Series {
+                name: format!(
+                    "Eq. 28, t1' = {:.3} s, beta = {:.2}",
+                    fit.t1_prime, fit.beta
+                ),
+                points: vec![
+                    (1.0 / fit.beta + 1.0 / fit.t1_prime, 1.0),
+                    (lmax / fit.beta + 1.0 / fit.t1_prime, lmax),
+                ],
+                style: Style::Dashed,
+                color: COLORS[2],
+            });
+        }
+    }
+    let chart = |title: String, x_label: &str, x_scale, x_range, series| Chart {
+        title,
+        x_label: x_label.into(),
+        y_label: "a_p / a_p,min".into(),
+        x_scale,
+        x_range: Some(x_range),
+        y_range: Some((0.0, lmax)),
+        series,
+        ..Chart::default()
+    };
+    vec![
+        (
+            "oas",
+            chart(
+                format!("OAS, {}", o.record),
+                "p [1/s]",
+                Scale::Linear,
+                (0.0, pmax),
+                by_p,
+            ),
+        ),
+        (
+            "transformed",
+            chart(
+                format!("Transformed OAS, {}", o.record),
+                "f = p a_p / a_p,min [1/s]",
+                Scale::Linear,
+                (0.0, fmax),
+                by_f,
+            ),
+        ),
+        (
+            "size",
+            chart(
+                format!("OAS against the block size, {}", o.record),
+                "size R [m] (half diagonal)",
+                Scale::Log,
+                (rmin, rmax),
+                by_r,
+            ),
+        ),
+    ]
+}

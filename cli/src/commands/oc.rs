@@ -1,0 +1,215 @@
+//! `rocking oc`: the overturning curve of a pulse (thesis Fig. 8, 33, 40): safe/unsafe on a grid
+//! of `p t_p` (log-spaced) × `a_p / a_p,min` (linear, from 1), through
+//! `rocking::spectra::overturning_curve`.
+
+use std::path::PathBuf;
+
+use clap::{Args, ValueEnum};
+use rocking::model::single_block::EquivalentBlock;
+use rocking::spectra::{self, column_of_size, linear_levels, log_sizes, PulseShape, SweepOptions};
+use serde::Serialize;
+
+use super::sweep::{count, positive, Shard, SimulationArgs};
+use crate::output::print_json;
+use crate::plot::{Chart, Scale, Series, Style, COLORS};
+use crate::progress;
+
+/// The pulse shapes.
+#[derive(Clone, Copy, Debug, ValueEnum)]
+pub enum Shape {
+    HalfSine,
+    FullSine,
+    ThreeHalfSines,
+    Rectangular,
+    Triangular,
+    Ricker,
+}
+
+impl Shape {
+    fn pulse(self) -> PulseShape {
+        match self {
+            Shape::HalfSine => PulseShape::half_sine(),
+            Shape::FullSine => PulseShape::full_sine(),
+            Shape::ThreeHalfSines => PulseShape::three_half_sines(),
+            Shape::Rectangular => PulseShape::Rectangular,
+            Shape::Triangular => PulseShape::Triangular,
+            Shape::Ricker => PulseShape::Ricker,
+        }
+    }
+}
+
+/// One grid point of `oc --json`.
+#[derive(Serialize)]
+struct Point {
+    t_p: f64,
+    a_p: f64,
+    p_tp: f64,
+    level: f64,
+    #[serde(rename = "unsafe")]
+    overturns: bool,
+}
+
+/// One point of the envelope: the lowest unsafe level at `p t_p` (`None`: none).
+#[derive(Serialize)]
+struct EnvelopePoint {
+    p_tp: f64,
+    level: Option<f64>,
+}
+
+/// `oc --json`.
+#[derive(Serialize)]
+struct OcJson {
+    shape: String,
+    blocks: usize,
+    p: f64,
+    a_p_min: f64,
+    points: Vec<Point>,
+    envelope: Vec<EnvelopePoint>,
+}
+
+/// Options of `rocking oc`.
+#[derive(Args, Debug)]
+pub struct OcArgs {
+    /// The pulse.
+    #[arg(long, value_enum, default_value_t = Shape::HalfSine)]
+    pub shape: Shape,
+    /// Equal blocks in the column.
+    #[arg(long, default_value_t = 1, value_parser = count)]
+    pub blocks: usize,
+    /// H/B of each block.
+    #[arg(long, default_value_t = 12.0, value_parser = positive)]
+    pub slenderness: f64,
+    /// Size R of the column (half diagonal of the equivalent monolith) [m].
+    #[arg(long, default_value_t = 1.0, value_parser = positive)]
+    pub size: f64,
+    /// Smallest p t_p.
+    #[arg(long = "ptp-min", default_value_t = 0.1, value_parser = positive)]
+    pub ptp_min: f64,
+    /// Largest p t_p.
+    #[arg(long = "ptp-max", default_value_t = 10.0, value_parser = positive)]
+    pub ptp_max: f64,
+    /// Number of p t_p values (log-spaced).
+    #[arg(long = "ptp-n", default_value_t = 40, value_parser = count)]
+    pub ptp_n: usize,
+    /// Highest level a_p / a_p,min.
+    #[arg(long = "level-max", default_value_t = 10.0, value_parser = positive)]
+    pub level_max: f64,
+    /// Number of levels (linear from 1).
+    #[arg(long = "level-n", default_value_t = 40, value_parser = count)]
+    pub level_n: usize,
+    #[command(flatten)]
+    pub simulation: SimulationArgs,
+    /// Only the pulse durations k with k % n == i (merge the shards' CSV by hand).
+    #[arg(long, default_value_t = Shard::WHOLE, value_name = "i/n")]
+    pub shard: Shard,
+    /// JSON instead of CSV.
+    #[arg(long)]
+    pub json: bool,
+    /// Draw the curve (.svg or .png).
+    #[arg(long, value_name = "FILE", value_parser = crate::plot::plot_path)]
+    pub svg: Option<PathBuf>,
+}
+
+/// Runs the command.
+pub fn run(a: &OcArgs) -> Result<(), String> {
+    let shape = a.shape.pulse();
+    let column = column_of_size(a.size, a.slenderness, a.blocks).map_err(|e| e.to_string())?;
+    let mut sweep = SweepOptions::default();
+    a.simulation.apply(&mut sweep);
+    let block = EquivalentBlock::of_column(&column);
+    let g = sweep.simulation.physics.gravity;
+    let (mono_p, mono_a_p_min) = (block.frequency_parameter(g), block.a_p_min(g));
+    let ptp: Vec<f64> = log_sizes(a.ptp_max, a.ptp_min, a.ptp_n)
+        .into_iter()
+        .rev()
+        .collect();
+    let t_p: Vec<f64> = a.shard.keep(&ptp).iter().map(|x| x / mono_p).collect();
+    let levels = linear_levels(1.0, a.level_max, a.level_n);
+    let a_p: Vec<f64> = levels.iter().map(|l| l * mono_a_p_min).collect();
+    let bar = progress::bar(t_p.len() as u64, "OC");
+    let tick = || bar.inc(1);
+    let res = spectra::overturning_curve(&column, shape, &t_p, &a_p, &sweep, Some(&tick))
+        .map_err(|e| e.to_string())?;
+    bar.finish_and_clear();
+    if a.json {
+        let points = res
+            .normalised()
+            .iter()
+            .zip(
+                res.t_p
+                    .iter()
+                    .flat_map(|t| a_p.iter().map(move |ap| (*t, *ap))),
+            )
+            .map(|(&(p_tp, level, overturns), (t_p, a_p))| Point {
+                t_p,
+                a_p,
+                p_tp,
+                level,
+                overturns,
+            })
+            .collect();
+        let envelope = res
+            .normalised_envelope()
+            .iter()
+            .map(|&(p_tp, level)| EnvelopePoint { p_tp, level })
+            .collect();
+        print_json(&OcJson {
+            shape: shape.name(),
+            blocks: a.blocks,
+            p: mono_p,
+            a_p_min: mono_a_p_min,
+            points,
+            envelope,
+        })?;
+    } else {
+        println!("shape,blocks,t_p,a_p,p_tp,level,unsafe");
+        for (i, &t) in res.t_p.iter().enumerate() {
+            for (j, &ap) in res.a_p.iter().enumerate() {
+                println!(
+                    "{},{},{t},{ap},{},{},{}",
+                    shape.name(),
+                    a.blocks,
+                    mono_p * t,
+                    ap / mono_a_p_min,
+                    u8::from(res.is_unsafe(i, j))
+                );
+            }
+        }
+    }
+    if let Some(path) = &a.svg {
+        let pts = res.normalised();
+        let env: Vec<(f64, f64)> = res
+            .normalised_envelope()
+            .iter()
+            .filter_map(|(x, e)| e.map(|y| (*x, y)))
+            .collect();
+        Chart {
+            title: format!(
+                "Overturning curve, {}, {} block{}",
+                shape.name(),
+                a.blocks,
+                if a.blocks == 1 { "" } else { "s" }
+            ),
+            x_label: "p t_p".into(),
+            y_label: "a_p / a_p,min".into(),
+            x_scale: Scale::Log,
+            series: vec![
+                Series {
+                    name: "overturns".into(),
+                    points: pts.iter().filter(|p| p.2).map(|p| (p.0, p.1)).collect(),
+                    style: Style::Points,
+                    color: COLORS[0],
+                },
+                Series {
+                    name: "envelope".into(),
+                    points: env,
+                    style: Style::Line,
+                    color: COLORS[1],
+                },
+            ],
+            ..Chart::default()
+        }
+        .write(path)?;
+    }
+    Ok(())
+}

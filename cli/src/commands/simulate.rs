@@ -1,0 +1,254 @@
+//! `rocking simulate SCENE.json --out DIR [--plot FILE.svg|png]`: a time history of a scene.
+//!
+//! Writes `DIR/history.csv` (t, interface angles and rates, block rotations, statuses),
+//! `DIR/events.jsonl` (one JSON object per event) and `DIR/summary.json`. Files are written only
+//! after the simulation succeeded, each atomically.
+
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use clap::Args;
+use rocking::driver::{self, EnergyBalance, EventKind, Outcome, StopReason};
+use rocking::ground::FnMotion;
+use rocking::Status;
+use serde::Serialize;
+
+use crate::output::{json_tree, write_atomic};
+use crate::plot::{Chart, Marker, Series, Style, COLORS};
+use crate::progress;
+use rocking::scene::{self, Scene};
+
+/// Options of `rocking simulate`.
+#[derive(Args, Debug)]
+pub struct SimulateArgs {
+    /// The scene file (JSON: blocks, excitation, settings; see examples/scenes).
+    pub scene: PathBuf,
+    /// Output directory (created if needed).
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Draw block rotations against time with the events marked (.svg or .png).
+    #[arg(long, value_parser = crate::plot::plot_path)]
+    pub plot: Option<PathBuf>,
+}
+
+/// Runs the command.
+pub fn run(a: &SimulateArgs) -> Result<(), String> {
+    let (scene_path, out, plot) = (a.scene.as_path(), a.out.as_path(), a.plot.as_deref());
+    let scene = scene::load(scene_path).map_err(|e| e.to_string())?;
+    let excitation = &scene.excitation;
+    let motion = FnMotion(|t| excitation.acceleration(t), excitation.end_time());
+    let bar = progress::bar(1000, "simulating");
+    let mut report = |fraction: f64| bar.set_position((fraction * 1000.0) as u64);
+    let started = Instant::now();
+    let outcome = driver::simulate(&scene.column, &motion, &scene.options, Some(&mut report))
+        .map_err(|e| e.to_string())?;
+    let wall = started.elapsed().as_secs_f64();
+    bar.finish_and_clear();
+
+    if scene.output.history {
+        if let Some(h) = &outcome.history {
+            write_atomic(&out.join("history.csv"), history_csv(h).as_bytes())?;
+        }
+    }
+    if scene.output.events {
+        let mut lines = String::new();
+        for e in &outcome.events {
+            lines.push_str(&json_tree(e)?.to_string());
+            lines.push('\n');
+        }
+        write_atomic(&out.join("events.jsonl"), lines.as_bytes())?;
+    }
+    let summary = json_tree(&Summary::of(&scene, scene_path, &outcome, wall))?;
+    let text = serde_json::to_string_pretty(&summary).map_err(|e| e.to_string())?;
+    write_atomic(&out.join("summary.json"), format!("{text}\n").as_bytes())?;
+    if let Some(p) = plot {
+        chart(&scene, &outcome)?.write(p)?;
+    }
+    println!(
+        "{}: {} at t = {:.4} s, {} impacts, {} events; peak block rotations {:?} rad ({:.3} s wall) -> {}",
+        scene.title,
+        stop_text(&outcome.stop_reason),
+        outcome.t_end,
+        outcome.impacts,
+        outcome.events.len(),
+        outcome.peak_block_rotation.iter().map(|v| (v * 1e4).round() / 1e4).collect::<Vec<_>>(),
+        wall,
+        out.display()
+    );
+    Ok(())
+}
+
+/// The history as CSV: per interface its signed angle and rate (`phĭ + phî`), per block its
+/// absolute rotation, per interface its status.
+pub fn history_csv(h: &driver::History) -> String {
+    let n = h.n_interfaces;
+    let mut s = String::from("t");
+    for k in 0..n {
+        let _ = write!(s, ",angle_{k}");
+    }
+    for k in 0..n {
+        let _ = write!(s, ",rate_{k}");
+    }
+    for k in 0..n {
+        let _ = write!(s, ",block_rotation_{k}");
+    }
+    for k in 0..n {
+        let _ = write!(s, ",status_{k}");
+    }
+    s.push('\n');
+    for i in 0..h.len() {
+        let _ = write!(s, "{}", h.t[i]);
+        let phi = h.phi_at(i);
+        let rates = &h.rates[i * 2 * n..(i + 1) * 2 * n];
+        for k in 0..n {
+            let _ = write!(s, ",{}", phi[k] + phi[n + k]);
+        }
+        for k in 0..n {
+            let _ = write!(s, ",{}", rates[k] + rates[n + k]);
+        }
+        for v in h.block_angles_at(i) {
+            let _ = write!(s, ",{v}");
+        }
+        for st in &h.statuses[i * n..(i + 1) * n] {
+            let _ = write!(s, ",{}", st.as_i8());
+        }
+        s.push('\n');
+    }
+    s
+}
+
+fn kind_name(k: EventKind) -> &'static str {
+    match k {
+        EventKind::Opening => "opening",
+        EventKind::Impact => "impact",
+        EventKind::Settled => "settled",
+        EventKind::Overturned => "overturned",
+        EventKind::Sliding => "sliding",
+        EventKind::Tension => "tension",
+    }
+}
+
+fn stop_text(s: &StopReason) -> String {
+    match s {
+        StopReason::Duration => "end of duration".into(),
+        StopReason::Overturned { interface } => format!("overturned at interface {interface}"),
+        StopReason::Fallen { interface } => format!("fallen at interface {interface}"),
+        StopReason::Sliding { interface } => format!("sliding at interface {interface}"),
+        StopReason::Tension { interface } => format!("tension at interface {interface}"),
+        StopReason::TooManyEvents => "too many events (cap reached)".into(),
+        StopReason::AtRest => "at rest for good (the ground can no longer open the column)".into(),
+        StopReason::CannotTip => {
+            "safe for good (the rest of the ground motion cannot tip the block)".into()
+        }
+    }
+}
+
+fn stop_json(s: &StopReason) -> (&'static str, Option<usize>) {
+    match *s {
+        StopReason::Duration => ("duration", None),
+        StopReason::Overturned { interface } => ("overturned", Some(interface)),
+        StopReason::Fallen { interface } => ("fallen", Some(interface)),
+        StopReason::Sliding { interface } => ("sliding", Some(interface)),
+        StopReason::Tension { interface } => ("tension", Some(interface)),
+        StopReason::TooManyEvents => ("too_many_events", None),
+        StopReason::AtRest => ("at_rest", None),
+        StopReason::CannotTip => ("cannot_tip", None),
+    }
+}
+
+/// `summary.json`.
+#[derive(Serialize)]
+struct Summary<'a> {
+    scene: String,
+    title: &'a str,
+    excitation: String,
+    overturned: bool,
+    t_end: f64,
+    impacts: usize,
+    stop_reason: &'static str,
+    stop_interface: Option<usize>,
+    peak_block_rotation: &'a [f64],
+    statuses_end: &'a [Status],
+    /// Events by kind.
+    events: BTreeMap<&'static str, usize>,
+    energy: Energy,
+    dt: f64,
+    wall_time_s: f64,
+}
+
+/// The energy balance and its residual.
+#[derive(Serialize)]
+struct Energy {
+    #[serde(flatten)]
+    balance: EnergyBalance,
+    residual: f64,
+}
+
+impl<'a> Summary<'a> {
+    fn of(scene: &'a Scene, path: &Path, o: &'a Outcome, wall: f64) -> Summary<'a> {
+        let (stop_reason, stop_interface) = stop_json(&o.stop_reason);
+        let mut events = BTreeMap::new();
+        for e in &o.events {
+            *events.entry(kind_name(e.kind)).or_insert(0) += 1;
+        }
+        Summary {
+            scene: path.display().to_string(),
+            title: &scene.title,
+            excitation: scene.excitation.describe(),
+            overturned: o.overturned,
+            t_end: o.t_end,
+            impacts: o.impacts,
+            stop_reason,
+            stop_interface,
+            peak_block_rotation: &o.peak_block_rotation,
+            statuses_end: &o.statuses_end,
+            events,
+            energy: Energy {
+                balance: o.energy,
+                residual: o.energy.residual(),
+            },
+            dt: scene.options.stepping.dt,
+            wall_time_s: wall,
+        }
+    }
+}
+
+fn chart(scene: &Scene, o: &Outcome) -> Result<Chart, String> {
+    let h = o
+        .history
+        .as_ref()
+        .ok_or("--plot needs the history (output.history must be true)")?;
+    let n = h.n_interfaces;
+    let mut chart = Chart {
+        title: format!("{} — {}", scene.title, scene.excitation.describe()),
+        x_label: "t [s]".into(),
+        y_label: "block rotation [rad]".into(),
+        ..Chart::default()
+    };
+    for k in 0..n {
+        chart.series.push(Series {
+            name: format!("block {k}"),
+            points: (0..h.len())
+                .map(|i| (h.t[i], h.block_angles_at(i)[k]))
+                .collect(),
+            style: Style::Line,
+            color: COLORS[k % COLORS.len()],
+        });
+    }
+    for e in &o.events {
+        let color = match e.kind {
+            EventKind::Impact => COLORS[1],
+            EventKind::Opening => COLORS[2],
+            EventKind::Settled => COLORS[7],
+            _ => (0, 0, 0),
+        };
+        chart.markers.push(Marker {
+            x: e.t,
+            kind: kind_name(e.kind).to_string(),
+            color,
+        });
+    }
+    Ok(chart)
+}

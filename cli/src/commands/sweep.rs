@@ -1,0 +1,208 @@
+//! What the spectra commands (`oc`, `oas`, `t1`) share: the settings of every simulation of a
+//! sweep, the OAS grid, `--shard`, and the value checks of their arguments.
+
+use std::path::Path;
+use std::str::FromStr;
+
+use clap::Args;
+use rocking::driver::{EventLocator, Integrator};
+use rocking::ground::records::{read_record, PlainFormat, Record};
+use rocking::spectra::{linear_levels, log_sizes, OasOptions, SizeSearch, SweepOptions};
+
+/// A finite number > 0.
+pub fn positive(s: &str) -> Result<f64, String> {
+    let v: f64 = s.parse().map_err(|_| format!("not a number: {s}"))?;
+    if v.is_finite() && v > 0.0 {
+        Ok(v)
+    } else {
+        Err(format!("must be finite and > 0, got {s}"))
+    }
+}
+
+/// A finite number ≥ 0.
+pub fn non_negative(s: &str) -> Result<f64, String> {
+    let v: f64 = s.parse().map_err(|_| format!("not a number: {s}"))?;
+    if v.is_finite() && v >= 0.0 {
+        Ok(v)
+    } else {
+        Err(format!("must be finite and >= 0, got {s}"))
+    }
+}
+
+/// A count ≥ 1.
+pub fn count(s: &str) -> Result<usize, String> {
+    match s.parse::<usize>() {
+        Ok(n) if n >= 1 => Ok(n),
+        _ => Err(format!("must be a whole number >= 1, got {s}")),
+    }
+}
+
+/// `--shard i/n`: keep the items whose index `k` has `k % n == i`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Shard {
+    pub index: usize,
+    pub count: usize,
+}
+
+impl Shard {
+    /// The whole sweep.
+    pub const WHOLE: Shard = Shard { index: 0, count: 1 };
+
+    /// The items of `items` in this shard, in their order.
+    pub fn keep<T: Clone>(&self, items: &[T]) -> Vec<T> {
+        items
+            .iter()
+            .enumerate()
+            .filter(|(k, _)| k % self.count == self.index)
+            .map(|(_, x)| x.clone())
+            .collect()
+    }
+}
+
+impl FromStr for Shard {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Shard, String> {
+        let (i, n) = s
+            .split_once('/')
+            .ok_or_else(|| format!("expected i/n, got {s}"))?;
+        let index: usize = i.parse().map_err(|_| format!("bad index {i}"))?;
+        let count: usize = n.parse().map_err(|_| format!("bad count {n}"))?;
+        if count == 0 || index >= count {
+            return Err(format!("need 0 <= i < n, got {index}/{count}"));
+        }
+        Ok(Shard { index, count })
+    }
+}
+
+impl std::fmt::Display for Shard {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}/{}", self.index, self.count)
+    }
+}
+
+/// Sizes rayon's global pool for the sweeps (`--threads N`). Results do not depend on it; only
+/// the first call in a process can set the pool, later ones are ignored.
+pub fn set_threads(n: usize) {
+    let _ = rayon::ThreadPoolBuilder::new()
+        .num_threads(n)
+        .build_global();
+}
+
+/// Reads a record (PEER `.AT2`, or plain text in m/s²).
+pub fn read(path: &Path) -> Result<Record, String> {
+    read_record(path, &PlainFormat::default()).map_err(|e| e.to_string())
+}
+
+/// The settings of every simulation of a sweep.
+#[derive(Args, Debug)]
+pub struct SimulationArgs {
+    /// Consecutive impacts per closing (1: Housner; 2: the thesis's recommended model).
+    #[arg(long, default_value_t = 1, value_parser = count)]
+    pub impacts: usize,
+    /// Factor on the time step rule.
+    #[arg(long = "dt-factor", default_value_t = 1.0, value_parser = positive)]
+    pub dt_factor: f64,
+    /// Simulated time after the motion ends, in units of 1/p [default: the library's].
+    #[arg(long, value_parser = non_negative)]
+    pub tail: Option<f64>,
+    /// Hermite event location (events refined by re-integration).
+    #[arg(long)]
+    pub hermite: bool,
+    /// RK4 with Hermite event location.
+    #[arg(long)]
+    pub rk4: bool,
+    /// Run every simulation to its end (by default a single block stops as soon as an energy
+    /// bound proves that the rest of the motion cannot tip it: the same verdicts, faster).
+    #[arg(long = "full-runs")]
+    pub full_runs: bool,
+    /// Threads [default: every core]; the results do not depend on it.
+    #[arg(long, value_parser = count)]
+    pub threads: Option<usize>,
+}
+
+impl SimulationArgs {
+    /// Writes these settings into `s` (and sizes the thread pool).
+    pub fn apply(&self, s: &mut SweepOptions) {
+        if let Some(n) = self.threads {
+            set_threads(n);
+        }
+        s.simulation.physics.model.n_impacts = self.impacts as u32;
+        s.time_step = s.time_step.scaled(self.dt_factor);
+        if let Some(tail) = self.tail {
+            s.tail = tail;
+        }
+        if self.hermite || self.rk4 {
+            s.simulation.stepping.locator = EventLocator::Hermite;
+        }
+        if self.rk4 {
+            s.simulation.stepping.integrator = Integrator::Rk4;
+        }
+        // Same verdicts either way (tested); only for checking that claim, or timing it.
+        s.simulation.stopping.stop_when_safe = !self.full_runs;
+    }
+}
+
+/// The grid of an OAS: levels, sizes, column.
+#[derive(Args, Debug)]
+pub struct OasGridArgs {
+    /// H/B of the equivalent monolith (thesis: 12).
+    #[arg(long, default_value_t = 12.0, value_parser = positive)]
+    pub slenderness: f64,
+    /// Number of levels a_p / a_p,min, linear from 1 to --level-max (thesis: 80).
+    #[arg(long, default_value_t = 80, value_parser = count)]
+    pub levels: usize,
+    /// Highest level a_p / a_p,min.
+    #[arg(long = "level-max", default_value_t = 10.0, value_parser = positive)]
+    pub level_max: f64,
+    /// Number of sizes R, log-spaced from --size-max down to --size-min (thesis: 120).
+    #[arg(long, default_value_t = 120, value_parser = count)]
+    pub sizes: usize,
+    /// Smallest size R [m].
+    #[arg(long = "size-min", default_value_t = 0.1, value_parser = positive)]
+    pub size_min: f64,
+    /// Largest size R [m].
+    #[arg(long = "size-max", default_value_t = 1000.0, value_parser = positive)]
+    pub size_max: f64,
+    /// Equal blocks in the column (1: a single block).
+    #[arg(long, default_value_t = 1, value_parser = count)]
+    pub blocks: usize,
+    /// Bisection on the size instead of the thesis's scan from the largest size.
+    #[arg(long)]
+    pub bisection: bool,
+}
+
+impl OasGridArgs {
+    /// The OAS options of this grid with `simulation`'s settings.
+    pub fn options(&self, simulation: &SimulationArgs) -> OasOptions {
+        let mut o = OasOptions {
+            slenderness: self.slenderness,
+            levels: linear_levels(1.0, self.level_max, self.levels),
+            sizes: log_sizes(self.size_max, self.size_min, self.sizes),
+            n_blocks: self.blocks,
+            search: if self.bisection {
+                SizeSearch::Bisection
+            } else {
+                SizeSearch::Scan
+            },
+            ..OasOptions::default()
+        };
+        simulation.apply(&mut o.sweep);
+        o
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn shards_partition_the_items() {
+        let items: Vec<usize> = (0..7).collect();
+        let s: Shard = "1/3".parse().unwrap();
+        assert_eq!(s.keep(&items), vec![1, 4]);
+        assert_eq!(Shard::WHOLE.keep(&items), items);
+        for bad in ["3/3", "1", "a/2", "0/0", "-1/2"] {
+            assert!(bad.parse::<Shard>().is_err(), "{bad}");
+        }
+    }
+}

@@ -1,0 +1,83 @@
+//! The arguments of every command go through clap: `--help` prints the usage, bad values are
+//! refused with the argument named (exit code 2), before any work is done.
+
+use std::process::Command;
+
+fn rocking(args: &[&str]) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_rocking"))
+        .args(args)
+        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
+        .output()
+        .unwrap();
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+#[test]
+fn every_command_has_help() {
+    for (cmd, expect) in [
+        (vec!["oc"], "--ptp-n"),
+        (vec!["oas"], "--merge"),
+        (vec!["t1"], "--shard"),
+        (vec!["design", "width"], "--mass"),
+        (vec!["design", "check"], "--exact-icr"),
+        (vec!["simulate"], "--plot"),
+        (vec!["bench", "accuracy"], "--peer"),
+        (vec!["bench", "spectra"], "--compare"),
+    ] {
+        let mut args = cmd.clone();
+        args.push("--help");
+        let (code, out, err) = rocking(&args);
+        assert_eq!(code, 0, "{cmd:?}: {err}");
+        assert!(out.contains("Usage: rocking"), "{cmd:?}: {out}");
+        assert!(out.contains(expect), "{cmd:?} --help lacks {expect}: {out}");
+    }
+}
+
+#[test]
+fn bad_values_are_refused_naming_the_argument() {
+    for (args, named) in [
+        (vec!["oc", "--blocks", "0"], "--blocks"),
+        (vec!["oc", "--shape", "square"], "--shape"),
+        (vec!["oc", "--slenderness=-3"], "--slenderness"),
+        (vec!["oc", "--svg", "oc.pdf"], "--svg"),
+        (vec!["oas", "x.AT2", "--shard", "2/2"], "--shard"),
+        (vec!["oas", "x.AT2", "--dt-factor", "nan"], "--dt-factor"),
+        (vec!["oas", "--png", "x.AT2"], "--svg"),
+        (vec!["oas"], "<RECORD>"),
+        (vec!["t1", "--levels", "many", "x.AT2"], "--levels"),
+        (
+            vec!["design", "width", "--height", "10", "--pga", "3"],
+            "--t1",
+        ),
+        (
+            vec![
+                "design", "width", "--height", "10", "--pga", "3", "--t1", "0.2", "--mass", "x",
+            ],
+            "--mass",
+        ),
+        (
+            vec!["simulate", "s.json", "--out", "d", "--plot", "p.jpg"],
+            "--plot",
+        ),
+    ] {
+        let (code, out, err) = rocking(&args);
+        assert_eq!(code, 2, "{args:?}: {err}");
+        assert!(out.is_empty(), "{args:?} printed {out}");
+        assert!(err.starts_with("error:"), "{args:?}: {err}");
+        assert!(err.contains(named), "{args:?}: {err}");
+    }
+}
+
+/// A failure after the arguments were accepted (here a missing record) exits 1 and says which
+/// file.
+#[test]
+fn run_time_errors_name_the_file() {
+    let (code, out, err) = rocking(&["oas", "no-such-record.AT2"]);
+    assert_eq!(code, 1);
+    assert!(out.is_empty());
+    assert!(err.contains("no-such-record.AT2"), "{err}");
+}

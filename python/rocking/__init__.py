@@ -1,0 +1,85 @@
+"""rocking: opening and impact models for columns of rigid rocking blocks (Ther, "Analysis and
+Design of Rocking Mechanisms"), numpy in and out.
+
+The models (thesis 3.2.2 and 3.2.3) work on the ``2n`` interface DOFs of a column of ``n``
+blocks, ordered ``[phĭ_0 … phĭ_{n-1}, phî_0 … phî_{n-1}]``: ``phĭ_k`` is the rotation of everything
+above interface ``k`` about its right corner (admissible ``<= 0``, status −1), ``phî_k`` about its
+left corner (``>= 0``, status +1); status 0 is closed (SPEC §1).
+
+- :func:`impact_model`, :func:`opening_model`, :func:`check_configuration`: the decisions;
+- :func:`column_mass_matrix` (``M`` and ``q`` of a column of rectangular blocks),
+  :func:`reduce` (``BᵀMB``, ``Bᵀp`` of an FE model, thesis Appendix C);
+- :func:`read_record`, :class:`Record` and the pulses (:func:`half_sine`, :func:`full_sine`, …);
+- :class:`RockingError`, the one exception (a ``ValueError`` with the C ABI's status code);
+- :mod:`rocking.opensees`: the coupling with an openseespy model (needs ``openseespy``).
+
+Every function takes any array-like (lists, tuples, numpy arrays of any numeric dtype), returns
+new numpy arrays, and never modifies its arguments.
+"""
+
+from ._rocking import (
+    Pulse,
+    Record,
+    Report,
+    RockingError,
+    __version__,
+    check_configuration,
+    column_mass_matrix,
+    error_codes,
+    full_sine,
+    half_sine,
+    half_sines,
+    impact_model,
+    mavroeidis_papageorgiou,
+    opening_model,
+    read_record,
+    rectangular,
+    reduce,
+    ricker,
+    triangular,
+)
+
+# Defaults, so that a RockingError raised from Python code has every attribute too.
+RockingError.code = None
+RockingError.name = None
+RockingError.message = None
+RockingError.detail = ""
+
+
+def _error(detail):
+    """A RockingError raised by the package's Python code (scenes, the OpenSees coupling): no C
+    code, ``detail`` names the field."""
+    e = RockingError(detail)
+    e.detail = detail
+    return e
+
+
+#: ``{C name: status code}`` of the C ABI (``ROCKING_OK`` = 0, ``ROCKING_ERR_*``): the values of
+#: :attr:`RockingError.code`.
+ERROR_CODES = dict(error_codes())
+
+#: Standard gravity of the thesis (m/s²).
+GRAVITY = 9.81
+
+__all__ = [
+    "ERROR_CODES",
+    "GRAVITY",
+    "Pulse",
+    "Record",
+    "Report",
+    "RockingError",
+    "__version__",
+    "check_configuration",
+    "column_mass_matrix",
+    "full_sine",
+    "half_sine",
+    "half_sines",
+    "impact_model",
+    "mavroeidis_papageorgiou",
+    "opening_model",
+    "read_record",
+    "rectangular",
+    "reduce",
+    "ricker",
+    "triangular",
+]

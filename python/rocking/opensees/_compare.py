@@ -1,0 +1,59 @@
+"""The same scene through the rigid driver, and the event-by-event comparison."""
+import copy
+import json
+import os
+import shutil
+import subprocess
+import tempfile
+from pathlib import Path
+
+from ._analysis import load_scene
+
+
+def find_cli(cli=None):
+    """The ``rocking`` command line: ``cli``, ``$ROCKING_CLI``, or ``rocking`` on the PATH."""
+    for candidate in [cli, os.environ.get("ROCKING_CLI"), shutil.which("rocking")]:
+        if candidate and Path(candidate).exists():
+            return str(candidate)
+    raise FileNotFoundError(
+        "the rigid driver's command line 'rocking' was not found: build it (cargo build --release -p rocking-cli) "
+        "and pass --cli target/release/rocking or set ROCKING_CLI"
+    )
+
+
+def rigid_driver_events(scene, duration=None, cli=None):
+    """The rigid driver's events (the CLI's events.jsonl) on the same scene, with the exact
+    Lagrangian velocity terms (``exact_velocity_terms``: OpenSees's corotational blocks integrate
+    them; thesis Eq. 6 drops them, docs/opensees.md §5)."""
+    spec, base = load_scene(scene)
+    spec = copy.deepcopy(spec)
+    spec["exact_velocity_terms"] = True
+    if duration is not None:
+        spec["duration"] = duration
+    exc = spec.get("excitation", {})
+    if exc.get("type") == "record" and not Path(exc["path"]).is_absolute():
+        exc["path"] = str(base / exc["path"])
+    spec.setdefault("output", {})["history"] = False
+    with tempfile.TemporaryDirectory() as tmp:
+        path = Path(tmp) / "scene.json"
+        path.write_text(json.dumps(spec))
+        subprocess.run([find_cli(cli), "simulate", str(path), "--out", tmp], check=True, capture_output=True, text=True)
+        return [json.loads(line) for line in (Path(tmp) / "events.jsonl").read_text().splitlines() if line.strip()]
+
+
+def compare_events(opensees, rigid):
+    """Pairs the opening and impact events in order: for each, whether kind, interface and the
+    configuration after agree, and the time difference (OpenSees − driver, s)."""
+    a = [e for e in opensees if e["kind"] in ("opening", "impact")]
+    b = [e for e in rigid if e["kind"] in ("opening", "impact")]
+    out = []
+    for i, e in enumerate(a):
+        if i >= len(b):
+            out.append({"index": i, "kind": e["kind"], "t": e["t"], "same": False, "driver": None, "dt": None})
+            continue
+        x = b[i]
+        same = (e["kind"], e["interface"], list(e["statuses_after"])) == (x["kind"], x["interface"], list(x["statuses_after"]))
+        out.append({"index": i, "kind": e["kind"], "interface": e["interface"], "t": e["t"], "driver_t": x["t"],
+                    "dt": e["t"] - x["t"], "same": same,
+                    "driver": {"kind": x["kind"], "interface": x["interface"], "statuses_after": x["statuses_after"]}})
+    return out

@@ -1,0 +1,72 @@
+//! `rocking.RockingError`: the one exception of the package, a `ValueError` that carries the C
+//! ABI's status code (the `ErrorKind` table of `src/error.rs`) and the detail that names the bad
+//! argument.
+
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use rocking::ErrorKind;
+
+pyo3::create_exception!(
+    rocking,
+    RockingError,
+    PyValueError,
+    "A call the library refused or could not solve.\n\n\
+     Attributes: ``code`` (int or None) is the C ABI's status code (``rocking.ERROR_CODES``): \
+     negative for a bad call, positive when the call is valid but cannot be solved as asked; \
+     None for inputs outside the models (records, pulses). ``name`` is the code's C name \
+     (``ROCKING_ERR_NOT_SYMMETRIC``, ...) or None; ``message`` is the code's static text \
+     (``rocking_error_message``) and ``detail`` what exactly was wrong, naming the argument \
+     (``rocking_last_error_message``)."
+);
+
+/// A `RockingError` with its attributes set.
+fn raise(py: Python<'_>, kind: Option<ErrorKind>, detail: &str) -> PyErr {
+    let text = match kind {
+        Some(k) => format!("{}: {detail}", k.message()),
+        None => detail.to_string(),
+    };
+    let err = RockingError::new_err(text);
+    let value = err.value(py);
+    // Setting attributes on a fresh exception instance cannot fail short of memory exhaustion;
+    // the exception is raised either way.
+    let _ = value.setattr("code", kind.map(ErrorKind::code));
+    let _ = value.setattr("name", kind.map(ErrorKind::c_name));
+    let _ = value.setattr("message", kind.map(ErrorKind::message));
+    let _ = value.setattr("detail", detail);
+    err
+}
+
+/// The library's model error as a `RockingError` with its code.
+pub fn model_error(e: rocking::RockingError) -> PyErr {
+    Python::attach(|py| raise(py, Some(e.kind), &e.detail))
+}
+
+/// A `RockingError` of the given kind (checks made in the binding, e.g. array shapes).
+pub fn error(kind: ErrorKind, detail: impl AsRef<str>) -> PyErr {
+    Python::attach(|py| raise(py, Some(kind), detail.as_ref()))
+}
+
+/// A `RockingError` without a C code: bad records, pulses and other inputs outside the models.
+pub fn value_error(detail: impl std::fmt::Display) -> PyErr {
+    Python::attach(|py| raise(py, None, &detail.to_string()))
+}
+
+/// `Result<T, rocking::RockingError>` → `PyResult<T>`.
+pub trait IntoPy<T> {
+    /// Converts the library's error.
+    fn py(self) -> PyResult<T>;
+}
+
+impl<T> IntoPy<T> for Result<T, rocking::RockingError> {
+    fn py(self) -> PyResult<T> {
+        self.map_err(model_error)
+    }
+}
+
+/// `{C name: code}` of every status code of the C ABI, success included.
+#[pyfunction]
+pub fn error_codes() -> Vec<(&'static str, i32)> {
+    std::iter::once((rocking::error::SUCCESS.0, 0))
+        .chain(ErrorKind::ALL.iter().map(|k| (k.c_name(), k.code())))
+        .collect()
+}

@@ -1,0 +1,41 @@
+//! `rocking._rocking`: the Python extension of the `rocking` library (PyO3 + rust-numpy). The
+//! package `rocking` (the `rocking/` folder beside this crate) re-exports it.
+//!
+//! Thin by design: every function converts its array-likes once (`arrays.rs`), calls the library
+//! function of the same meaning, and returns new numpy arrays; errors become the one exception
+//! `rocking.RockingError` with the C ABI's status code (`errors.rs`). The physics lives in the
+//! library, free of Python.
+
+mod arrays;
+mod column;
+mod errors;
+mod ground;
+mod models;
+
+use pyo3::prelude::*;
+
+#[pymodule]
+fn _rocking(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    let py = m.py();
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    m.add("RockingError", py.get_type::<errors::RockingError>())?;
+    m.add_function(wrap_pyfunction!(errors::error_codes, m)?)?;
+    m.add_class::<models::Report>()?;
+    m.add_function(wrap_pyfunction!(models::impact_model, m)?)?;
+    m.add_function(wrap_pyfunction!(models::opening_model, m)?)?;
+    m.add_function(wrap_pyfunction!(models::check_configuration, m)?)?;
+    m.add_function(wrap_pyfunction!(models::_time_impact_model, m)?)?;
+    m.add_function(wrap_pyfunction!(column::column_mass_matrix, m)?)?;
+    m.add_function(wrap_pyfunction!(column::reduce, m)?)?;
+    m.add_class::<ground::Record>()?;
+    m.add_class::<ground::Pulse>()?;
+    m.add_function(wrap_pyfunction!(ground::read_record, m)?)?;
+    m.add_function(wrap_pyfunction!(ground::half_sine, m)?)?;
+    m.add_function(wrap_pyfunction!(ground::full_sine, m)?)?;
+    m.add_function(wrap_pyfunction!(ground::half_sines, m)?)?;
+    m.add_function(wrap_pyfunction!(ground::rectangular, m)?)?;
+    m.add_function(wrap_pyfunction!(ground::triangular, m)?)?;
+    m.add_function(wrap_pyfunction!(ground::ricker, m)?)?;
+    m.add_function(wrap_pyfunction!(ground::mavroeidis_papageorgiou, m)?)?;
+    Ok(())
+}

@@ -1,0 +1,36 @@
+"""Shared fixtures: the repository's files, the thesis's values (tests/python/samples.json, generated
+from src/samples.rs) and the C ABI through ctypes (tests/python/smoke.py's declarations)."""
+import json
+import os
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "tests" / "python"))
+
+
+@pytest.fixture(scope="session")
+def samples():
+    return json.loads((ROOT / "tests" / "python" / "samples.json").read_text())
+
+
+@pytest.fixture(scope="session")
+def root():
+    return ROOT
+
+
+@pytest.fixture(scope="session")
+def cabi():
+    """The cdylib through ctypes: ROCKING_LIB if set (then it must exist: CI sets it), else
+    target/release/librocking.so if built, else the tests that compare with it skip."""
+    import smoke  # the ctypes declarations of the C ABI (standard library only)
+
+    path = os.environ.get("ROCKING_LIB")
+    if path is None:
+        default = ROOT / "target" / "release" / "librocking.so"
+        if not default.exists():
+            pytest.skip("no target/release/librocking.so (cargo build --release) and ROCKING_LIB unset")
+        path = default
+    return smoke, smoke.load(path)

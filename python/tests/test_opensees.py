@@ -1,0 +1,84 @@
+"""rocking.opensees: OpenSees (openseespy) integrates, the library decides. On the single block and
+the bundled two-block scene, `python -m rocking.opensees SCENE --compare` against the rigid driver
+(the CLI with the exact velocity terms, which OpenSees's corotational blocks integrate too): the
+same events and configurations, impacts within 2 ms and openings within 5 ms (the tolerances of
+tests/opensees, docs/opensees.md §5). Runs where openseespy is installed (tests/opensees/run.sh);
+elsewhere only the import checks run."""
+import importlib.util
+import json
+import os
+import subprocess
+import sys
+
+import pytest
+
+import rocking
+
+HAVE_OPENSEES = importlib.util.find_spec("openseespy") is not None
+needs_opensees = pytest.mark.skipif(not HAVE_OPENSEES, reason="openseespy not installed (tests/opensees/run.sh has it)")
+
+SINGLE_BLOCK = {
+    "title": "single block 0.2 x 0.6 m, 100 kg, released at 0.15 rad about its left corner",
+    "blocks": [{"width": 0.2, "height": 0.6, "mass": 100.0}],
+    "initial_angles": [0.15],
+    "excitation": {"type": "none"},
+    "impacts": 1, "duration": 1.2, "dt": 1e-4,
+}
+
+
+@pytest.fixture(scope="module")
+def cli(root):
+    path = os.environ.get("ROCKING_CLI") or str(root / "target" / "release" / "rocking")
+    if not os.path.exists(path):
+        pytest.skip("no rocking CLI (cargo build --release -p rocking-cli) and ROCKING_CLI unset")
+    return path
+
+
+def run_module(scene, cli, *extra):
+    out = subprocess.run([sys.executable, "-m", "rocking.opensees", str(scene), "--compare", "--cli", cli, *extra],
+                         capture_output=True, text=True, check=True)
+    return json.loads(out.stdout)  # one JSON object on standard output, nothing else
+
+
+def check_against_driver(result, n_events):
+    compare = result["compare"]
+    assert len(compare) == n_events, compare
+    for c in compare:
+        assert c["same"], c
+        tol = 5e-3 if c["kind"] == "opening" else 2e-3
+        assert abs(c["dt"]) <= tol, c
+
+
+def test_import_without_openseespy():
+    import rocking.opensees  # never needs openseespy to import
+
+    assert callable(rocking.opensees.run)
+    if not HAVE_OPENSEES:
+        with pytest.raises(ImportError, match=r"pip install"):
+            rocking.opensees.load_openseespy()
+
+
+@needs_opensees
+def test_single_block_against_the_rigid_driver(cli, tmp_path):
+    scene = tmp_path / "single.json"
+    scene.write_text(json.dumps(SINGLE_BLOCK))
+    result = run_module(scene, cli)
+    impacts = [e for e in result["events"] if e["kind"] == "impact"]
+    assert len(impacts) == 4 and result["summary"]["events"]["impact"] == 4
+    b, h = 0.1, 0.3
+    mu = (2 * h * h - b * b) / (2 * h * h + 2 * b * b)  # Housner, thesis Eq. 1
+    for e in impacts:
+        assert e["rate_after"] / e["rate_before"] == pytest.approx(mu, abs=1e-4)
+        assert e["report"]["impacts_applied"] == 1
+    check_against_driver(result, 4)
+    assert result["summary"]["peak_block_rotation"][0] == pytest.approx(0.15, rel=1e-3)
+
+
+@needs_opensees
+def test_bundled_two_block_scene_against_the_rigid_driver(cli, root):
+    result = run_module(root / "examples" / "scenes" / "two_block_free_rocking.json", cli, "--duration", "0.33")
+    kinds = [e["kind"] for e in result["events"]]
+    assert kinds == ["opening", "impact", "impact", "impact", "impact"], kinds
+    opening = result["events"][0]
+    assert opening["agrees"] and opening["library"] == opening["statuses_after"]
+    check_against_driver(result, 5)

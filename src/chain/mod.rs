@@ -1,0 +1,437 @@
+//! Chains of rigid bodies between supports (SPEC §9): the geometry that a closed loop needs —
+//! pose from the joint angles, the mass matrix and load of the cut chain, the closure matrix `G`
+//! and `Ġ v`, the exact velocity terms, the position-level closure residual — and two loops built
+//! on it: the voussoir arch ([`arch`]) and the capped colonnade ([`colonnade`]).
+//!
+//! Bodies `0 … N−1` lie in a row between a left support (the ground) and, for a loop, a right
+//! support (the ground again). Joint `0` lies between the left support and body 0, joint `k`
+//! between bodies `k−1` and `k`, and in a loop joint `N` between body `N−1` and the right support.
+//! Joint `k` is a contact face with centre `o_k`, unit normal `n_k` (from the body before it to
+//! the body after it in chain order) and half width `b_k`; `t_k = (n_y, −n_x)`, corners
+//! `R_k = o_k + b_k t_k` and `L_k = o_k − b_k t_k`. DOFs `[phĭ_0 … phĭ_J, phî_0 … phî_J]`:
+//! `phĭ_k` rotates everything after joint `k` about `R_k` (admissible `<= 0`), `phî_k` about
+//! `L_k` (admissible `>= 0`). A column is the open chain with `n = +y` at every joint.
+
+pub mod arch;
+pub mod colonnade;
+#[cfg(test)]
+mod tests;
+
+use crate::validate::{self, InvalidValue};
+
+/// A rigid body of a chain, in the reference (closed) geometry.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Body {
+    /// Mass (kg).
+    pub mass: f64,
+    /// Moment of inertia about the centre of mass (kg m²).
+    pub inertia: f64,
+    /// Centre of mass (m).
+    pub centre: [f64; 2],
+}
+
+/// A joint (contact face) of a chain, in the reference geometry.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Joint {
+    /// Centre `o_k` of the contact face (m).
+    pub centre: [f64; 2],
+    /// Unit normal `n_k`, from the body before the joint to the body after it in chain order.
+    pub normal: [f64; 2],
+    /// Half contact width `b_k` (m).
+    pub half_width: f64,
+}
+
+impl Joint {
+    /// `t_k = (n_y, −n_x)`: the normal turned clockwise by 90°.
+    pub fn tangent(&self) -> [f64; 2] {
+        [self.normal[1], -self.normal[0]]
+    }
+
+    /// Corner `R_k = o_k + b_k t_k`, pivot of `phĭ_k`.
+    pub fn right_corner(&self) -> [f64; 2] {
+        let t = self.tangent();
+        [
+            self.centre[0] + self.half_width * t[0],
+            self.centre[1] + self.half_width * t[1],
+        ]
+    }
+
+    /// Corner `L_k = o_k − b_k t_k`, pivot of `phî_k`.
+    pub fn left_corner(&self) -> [f64; 2] {
+        let t = self.tangent();
+        [
+            self.centre[0] - self.half_width * t[0],
+            self.centre[1] - self.half_width * t[1],
+        ]
+    }
+}
+
+/// A validated chain: an open chain (as many joints as bodies) or a loop (one joint more).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Chain {
+    bodies: Vec<Body>,
+    joints: Vec<Joint>,
+}
+
+/// A planar rigid map `x ↦ R(angle) x + shift` (the default is the identity).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct RigidMap {
+    /// Rotation angle (rad, counter-clockwise).
+    pub angle: f64,
+    /// Translation (m).
+    pub shift: [f64; 2],
+}
+
+impl RigidMap {
+    /// The identity.
+    pub const IDENTITY: RigidMap = RigidMap {
+        angle: 0.0,
+        shift: [0.0, 0.0],
+    };
+
+    /// Image of a point.
+    pub fn apply(&self, x: [f64; 2]) -> [f64; 2] {
+        let (s, c) = self.angle.sin_cos();
+        [
+            c * x[0] - s * x[1] + self.shift[0],
+            s * x[0] + c * x[1] + self.shift[1],
+        ]
+    }
+
+    /// This map followed by a rotation by `theta` about the (current) point `p`.
+    pub fn then_rotate(&self, p: [f64; 2], theta: f64) -> RigidMap {
+        let (s, c) = theta.sin_cos();
+        let d = [self.shift[0] - p[0], self.shift[1] - p[1]];
+        RigidMap {
+            angle: self.angle + theta,
+            shift: [c * d[0] - s * d[1] + p[0], s * d[0] + c * d[1] + p[1]],
+        }
+    }
+}
+
+/// The current geometry of a chain for given joint angles.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct ChainPose {
+    /// Current `R_k` of each joint (a material point of the body before it).
+    pub right_pivots: Vec<[f64; 2]>,
+    /// Current `L_k` of each joint.
+    pub left_pivots: Vec<[f64; 2]>,
+    /// Current centre of mass of each body.
+    pub centres: Vec<[f64; 2]>,
+    /// Current map of each body from the reference geometry.
+    pub maps: Vec<RigidMap>,
+    /// For a loop, the map of the right support implied by the angles (the identity when the
+    /// loop is closed at position level).
+    pub support: RigidMap,
+    /// Suffix sums over the bodies after each joint: mass, centre of mass, polar moment about
+    /// that centre (parallel-axis accumulation, no cancellation).
+    suffix_mass: Vec<f64>,
+    suffix_centre: Vec<[f64; 2]>,
+    suffix_polar: Vec<f64>,
+}
+
+fn dot(a: [f64; 2], b: [f64; 2]) -> f64 {
+    a[0] * b[0] + a[1] * b[1]
+}
+
+fn sub(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
+    [a[0] - b[0], a[1] - b[1]]
+}
+
+/// 2D cross product `a × b = a_x b_y − a_y b_x`.
+fn cross(a: [f64; 2], b: [f64; 2]) -> f64 {
+    a[0] * b[1] - a[1] * b[0]
+}
+
+impl Chain {
+    /// Validates bodies and joints: masses and inertias finite and positive, centres finite,
+    /// normals finite and non-zero (they are normalised), half widths finite and positive, and
+    /// `joints.len()` equal to `bodies.len()` (open chain) or `bodies.len() + 1` (loop).
+    pub fn new(bodies: Vec<Body>, mut joints: Vec<Joint>) -> Result<Chain, InvalidValue> {
+        if bodies.is_empty() {
+            return Err(InvalidValue::new(
+                "bodies",
+                0,
+                "a chain needs at least one body",
+            ));
+        }
+        if joints.len() != bodies.len() && joints.len() != bodies.len() + 1 {
+            return Err(InvalidValue::new(
+                "joints",
+                joints.len(),
+                "must be as many as the bodies (open chain) or one more (loop)",
+            ));
+        }
+        for (j, b) in bodies.iter().enumerate() {
+            validate::positive(format!("bodies[{j}].mass"), b.mass)?;
+            validate::positive(format!("bodies[{j}].inertia"), b.inertia)?;
+            validate::finite(format!("bodies[{j}].centre.x"), b.centre[0])?;
+            validate::finite(format!("bodies[{j}].centre.y"), b.centre[1])?;
+        }
+        for (k, jt) in joints.iter_mut().enumerate() {
+            validate::finite(format!("joints[{k}].centre.x"), jt.centre[0])?;
+            validate::finite(format!("joints[{k}].centre.y"), jt.centre[1])?;
+            validate::positive(format!("joints[{k}].half_width"), jt.half_width)?;
+            let norm = jt.normal[0].hypot(jt.normal[1]);
+            if !(norm.is_finite() && norm > 0.0) {
+                return Err(InvalidValue::new(
+                    format!("joints[{k}].normal"),
+                    jt.normal,
+                    "must be a finite non-zero vector",
+                ));
+            }
+            jt.normal = [jt.normal[0] / norm, jt.normal[1] / norm];
+        }
+        Ok(Chain { bodies, joints })
+    }
+
+    /// Number of bodies `N`.
+    pub fn n_bodies(&self) -> usize {
+        self.bodies.len()
+    }
+
+    /// Number of joints (`N` for an open chain, `N + 1` for a loop).
+    pub fn n_joints(&self) -> usize {
+        self.joints.len()
+    }
+
+    /// Number of DOFs, twice the number of joints.
+    pub fn n_dofs(&self) -> usize {
+        2 * self.joints.len()
+    }
+
+    /// Whether the chain ends on a right support.
+    pub fn is_loop(&self) -> bool {
+        self.joints.len() == self.bodies.len() + 1
+    }
+
+    /// The bodies in chain order.
+    pub fn bodies(&self) -> &[Body] {
+        &self.bodies
+    }
+
+    /// The joints in chain order (reference geometry).
+    pub fn joints(&self) -> &[Joint] {
+        &self.joints
+    }
+
+    /// Total mass.
+    pub fn total_mass(&self) -> f64 {
+        self.bodies.iter().map(|b| b.mass).sum()
+    }
+
+    /// Current geometry for the DOF angles `phi` (length `2J`). Joint `k` rotates everything
+    /// after it by `phĭ_k + phî_k` about the pivot of whichever DOF is non-zero (`R_k` if
+    /// `phĭ_k ≠ 0`). Admissible signs are not checked here.
+    pub fn pose(&self, phi: &[f64]) -> ChainPose {
+        let nj = self.n_joints();
+        assert_eq!(phi.len(), 2 * nj, "phi must have 2 entries per joint");
+        let nb = self.n_bodies();
+        let mut pose = ChainPose {
+            right_pivots: Vec::with_capacity(nj),
+            left_pivots: Vec::with_capacity(nj),
+            centres: Vec::with_capacity(nb),
+            maps: Vec::with_capacity(nb),
+            support: RigidMap::IDENTITY,
+            ..ChainPose::default()
+        };
+        let mut map = RigidMap::IDENTITY;
+        for (k, joint) in self.joints.iter().enumerate() {
+            let right = map.apply(joint.right_corner());
+            let left = map.apply(joint.left_corner());
+            let (theta, pivot) = if phi[k] != 0.0 {
+                (phi[k], right)
+            } else {
+                (phi[nj + k], left)
+            };
+            if theta != 0.0 {
+                map = map.then_rotate(pivot, theta);
+            }
+            pose.right_pivots.push(right);
+            pose.left_pivots.push(left);
+            if k < nb {
+                pose.centres.push(map.apply(self.bodies[k].centre));
+                pose.maps.push(map);
+            } else {
+                pose.support = map;
+            }
+        }
+        // Suffix sums over bodies j >= k (parallel-axis accumulation).
+        pose.suffix_mass = vec![0.0; nb + 1];
+        pose.suffix_centre = vec![[0.0; 2]; nb + 1];
+        pose.suffix_polar = vec![0.0; nb + 1];
+        for j in (0..nb).rev() {
+            let (m, c, i) = (self.bodies[j].mass, pose.centres[j], self.bodies[j].inertia);
+            let (m1, c1, j1) = (
+                pose.suffix_mass[j + 1],
+                pose.suffix_centre[j + 1],
+                pose.suffix_polar[j + 1],
+            );
+            let s0 = m + m1;
+            let g = [(m * c[0] + m1 * c1[0]) / s0, (m * c[1] + m1 * c1[1]) / s0];
+            let d = sub(c, g);
+            let d1 = sub(c1, g);
+            pose.suffix_mass[j] = s0;
+            pose.suffix_centre[j] = g;
+            pose.suffix_polar[j] = j1 + m1 * dot(d1, d1) + i + m * dot(d, d);
+        }
+        pose
+    }
+
+    /// Pivot of DOF `a` in the pose.
+    fn pivot(&self, pose: &ChainPose, a: usize) -> [f64; 2] {
+        let nj = self.n_joints();
+        if a < nj {
+            pose.right_pivots[a]
+        } else {
+            pose.left_pivots[a - nj]
+        }
+    }
+
+    /// Full `2J × 2J` mass matrix of the cut chain in the pose, row-major:
+    /// `M[a][b] = Σ_{j after both joints} ( m_j (c_j − P_a)·(c_j − P_b) + I_j )`. In a loop the
+    /// last joint's rows and columns are zero (it moves no mass).
+    pub fn mass_matrix(&self, pose: &ChainPose) -> Vec<f64> {
+        let (nj, m) = (self.n_joints(), self.n_dofs());
+        let nb = self.n_bodies();
+        let mut out = vec![0.0; m * m];
+        for a in 0..m {
+            for b in a..m {
+                let k = (a % nj).max(b % nj).min(nb);
+                let s0 = pose.suffix_mass[k];
+                if s0 == 0.0 {
+                    continue;
+                }
+                let g = pose.suffix_centre[k];
+                let (pa, pb) = (self.pivot(pose, a), self.pivot(pose, b));
+                let v = s0 * dot(sub(g, pa), sub(g, pb)) + pose.suffix_polar[k];
+                out[a * m + b] = v;
+                out[b * m + a] = v;
+            }
+        }
+        out
+    }
+
+    /// Load vector `q` (length `2J`) for a horizontal ground acceleration `ground_acc` and gravity
+    /// `gravity` (positive downwards): the inertial forces `F_j = m_j (−a_g, −g)` about each
+    /// DOF's pivot, `q[a] = Σ_{j after joint} (c_j − P_a) × F_j`.
+    pub fn load_vector(&self, pose: &ChainPose, ground_acc: f64, gravity: f64) -> Vec<f64> {
+        let (nj, nb) = (self.n_joints(), self.n_bodies());
+        let f = [-ground_acc, -gravity];
+        (0..self.n_dofs())
+            .map(|a| {
+                let k = (a % nj).min(nb);
+                let s0 = pose.suffix_mass[k];
+                if s0 == 0.0 {
+                    return 0.0;
+                }
+                s0 * cross(sub(pose.suffix_centre[k], self.pivot(pose, a)), f)
+            })
+            .collect()
+    }
+
+    /// Closure matrix `G` (row-major `3 × 2J`; empty for an open chain): the column of DOF `a`
+    /// is the planar twist `(1, P_y, −P_x)` of a unit rotation about its pivot (rotation rate;
+    /// velocity of the material point at the origin). Around a loop `G v = 0`.
+    pub fn closure_matrix(&self, pose: &ChainPose) -> Vec<f64> {
+        if !self.is_loop() {
+            return Vec::new();
+        }
+        let m = self.n_dofs();
+        let mut g = vec![0.0; 3 * m];
+        for a in 0..m {
+            let p = self.pivot(pose, a);
+            g[a] = 1.0;
+            g[m + a] = p[1];
+            g[2 * m + a] = -p[0];
+        }
+        g
+    }
+
+    /// `Ġ v` (length 3; empty for an open chain) for the DOF rates `rates`: the pivots move with
+    /// the bodies, `Ġ v = Σ_a v_a (0, Ṗ_a,y, −Ṗ_a,x)` with `Ṗ_a` the velocity of DOF `a`'s pivot
+    /// as a material point of the body before its joint. The accelerations of a loop obey
+    /// `G a = −Ġ v`.
+    pub fn closure_rate(&self, pose: &ChainPose, rates: &[f64]) -> Vec<f64> {
+        if !self.is_loop() {
+            return Vec::new();
+        }
+        let nj = self.n_joints();
+        assert_eq!(rates.len(), 2 * nj);
+        // Twist of the body before joint k: rotation rate and velocity at the origin.
+        let mut omega = 0.0;
+        let mut v0 = [0.0_f64; 2];
+        let mut out = vec![0.0; 3];
+        for k in 0..nj {
+            for (a, p) in [(k, pose.right_pivots[k]), (nj + k, pose.left_pivots[k])] {
+                let va = rates[a];
+                if va != 0.0 {
+                    let pdot = [v0[0] - omega * p[1], v0[1] + omega * p[0]];
+                    out[1] += va * pdot[1];
+                    out[2] -= va * pdot[0];
+                }
+            }
+            for (a, p) in [(k, pose.right_pivots[k]), (nj + k, pose.left_pivots[k])] {
+                let va = rates[a];
+                omega += va;
+                v0 = [v0[0] + va * p[1], v0[1] - va * p[0]];
+            }
+        }
+        out
+    }
+
+    /// Position-level closure residual of a loop (zeros for an open chain): the rotation of the
+    /// right support implied by the angles and the displacement of the last joint's centre,
+    /// `(angle, dx, dy)`. Zero when the last body sits back on its support.
+    pub fn closure_residual(&self, pose: &ChainPose) -> [f64; 3] {
+        if !self.is_loop() {
+            return [0.0; 3];
+        }
+        let o = self.joints[self.n_joints() - 1].centre;
+        let moved = pose.support.apply(o);
+        [pose.support.angle, moved[0] - o[0], moved[1] - o[1]]
+    }
+
+    /// Velocity-dependent generalised forces that thesis Eq. 6 leaves out (centripetal terms of
+    /// the exact Lagrangian equations), as [`crate::model::column::Column::velocity_load_into`]:
+    /// with `φ̈ = 0` every body still accelerates, `a(x) = a(P) − ω² (x − P)` for two points of
+    /// the same body, and the generalised force is `−Σ_{j after joint} m_j (c_j − P_a) × a(c_j)`.
+    /// The exact equations of the cut chain are `M φ̈ = q + this (+ Gᵀ λ in a loop)`.
+    pub fn velocity_load(&self, pose: &ChainPose, phi: &[f64], rates: &[f64]) -> Vec<f64> {
+        let (nj, nb) = (self.n_joints(), self.n_bodies());
+        assert_eq!(rates.len(), 2 * nj);
+        assert_eq!(phi.len(), 2 * nj);
+        let mut centre_acc = vec![[0.0_f64; 2]; nb];
+        let mut omega = 0.0_f64;
+        let mut hinge = [0.0_f64, 0.0];
+        let mut hinge_acc = [0.0_f64, 0.0];
+        for j in 0..nb {
+            let use_right = phi[j] != 0.0 || (phi[nj + j] == 0.0 && rates[j] != 0.0);
+            let p = if use_right {
+                pose.right_pivots[j]
+            } else {
+                pose.left_pivots[j]
+            };
+            let acc_p = [
+                hinge_acc[0] - omega * omega * (p[0] - hinge[0]),
+                hinge_acc[1] - omega * omega * (p[1] - hinge[1]),
+            ];
+            omega += rates[j] + rates[nj + j];
+            let c = pose.centres[j];
+            centre_acc[j] = [
+                acc_p[0] - omega * omega * (c[0] - p[0]),
+                acc_p[1] - omega * omega * (c[1] - p[1]),
+            ];
+            hinge = p;
+            hinge_acc = acc_p;
+        }
+        (0..self.n_dofs())
+            .map(|a| {
+                let p = self.pivot(pose, a);
+                ((a % nj)..nb)
+                    .map(|j| -self.bodies[j].mass * cross(sub(pose.centres[j], p), centre_acc[j]))
+                    .sum()
+            })
+            .collect()
+    }
+}

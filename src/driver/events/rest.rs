@@ -1,0 +1,69 @@
+//! Stops of a column that can no longer move or tip, exact verdicts that end a run early:
+//! closed after the ground has gone quiet for good ([`StopReason::AtRest`],
+//! `stopping.quiet_after`), and the energy bound of `stopping.stop_when_safe` that proves a
+//! single block cannot tip in the rest of the motion ([`StopReason::CannotTip`]).
+
+use crate::driver::chain::ChainDynamics;
+use crate::driver::problem::Problem;
+use crate::driver::state::State;
+use crate::driver::StopReason;
+
+/// Share of `√E_tip` the energy bound may reach.
+const SAFETY_FACTOR: f64 = 0.9;
+/// Accepted steps between two evaluations of the bound.
+const SAFETY_EVERY: usize = 16;
+
+/// The energy bound of [`crate::driver::StoppingOptions::stop_when_safe`].
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct CannotTip {
+    /// `m R / √(2 I_P)`.
+    growth: f64,
+    /// `0.9 √E_tip`.
+    limit: f64,
+}
+
+impl CannotTip {
+    /// The bound when it applies (asked for, one block, static tipping).
+    pub fn new<C: ChainDynamics>(problem: &Problem<C>, n: usize, e_tip: f64) -> Option<CannotTip> {
+        let stopping = &problem.opts.stopping;
+        (stopping.stop_when_safe && n == 1 && !stopping.continue_until_fallen).then(|| CannotTip {
+            growth: problem.chain.energy_growth_bound(),
+            limit: SAFETY_FACTOR * e_tip.sqrt(),
+        })
+    }
+
+    /// Whether the bound proves, at `state`, that the block can never tip.
+    fn proves<C: ChainDynamics>(&self, problem: &mut Problem<C>, state: &State) -> bool {
+        let Some(impulse) = problem.motion.remaining_impulse(state.t()) else {
+            return false;
+        };
+        let energy = if state.is_closed() {
+            0.0
+        } else {
+            let (kin, pot) = problem.chain.energy(&state.open, &state.phi, &state.rates);
+            kin + pot
+        };
+        energy.max(0.0).sqrt() + self.growth * impulse <= self.limit
+    }
+}
+
+/// The stop before a step from `state` (after `steps` accepted steps), if the column is at rest
+/// for good or cannot tip.
+pub(crate) fn stop<C: ChainDynamics>(
+    problem: &mut Problem<C>,
+    state: &State,
+    cannot_tip: Option<&CannotTip>,
+    steps: usize,
+) -> Option<StopReason> {
+    if state.is_closed()
+        && problem
+            .opts
+            .stopping
+            .quiet_after
+            .is_some_and(|q| state.t() >= q)
+    {
+        return Some(StopReason::AtRest);
+    }
+    let bound = cannot_tip?;
+    (steps % SAFETY_EVERY == 0 && bound.proves(problem, state)).then_some(StopReason::CannotTip)
+}

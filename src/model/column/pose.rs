@@ -1,0 +1,142 @@
+//! The current geometry of a column (large rotations): pivots, block centres and angles for the
+//! DOF angles, with the suffix sums of mass, first and second moments and inertia above each
+//! interface that make every mass matrix and load entry O(1) (SPEC §1).
+
+use super::Column;
+
+impl Column {
+    /// Current geometry for the DOF angles `phi` (length `2n`). Each interface rotates by
+    /// `phĭ_k + phî_k` about the pivot of whichever DOF is non-zero (right corner if `phĭ_k ≠ 0`).
+    /// Admissible signs are not checked here; see [`crate::model::configuration`].
+    pub fn pose(&self, phi: &[f64]) -> Pose {
+        let mut pose = Pose::with_capacity(self.n_interfaces());
+        self.pose_into(phi, &mut pose);
+        pose
+    }
+
+    /// [`Column::pose`] into a reused buffer (no allocation once the buffer has grown).
+    pub fn pose_into(&self, phi: &[f64], pose: &mut Pose) {
+        let n = self.n_interfaces();
+        assert_eq!(phi.len(), 2 * n, "phi must have 2n entries");
+        pose.clear();
+        // Current rigid map of the block below: x ↦ R(alpha) x + t (the ground is the identity).
+        let mut alpha = 0.0_f64;
+        let (mut ca, mut sa) = (1.0_f64, 0.0_f64);
+        let mut t = [0.0_f64, 0.0];
+        for k in 0..n {
+            let b = self.half_contact[k];
+            let y = self.base_height[k];
+            let map = |p: [f64; 2], ca: f64, sa: f64, t: [f64; 2]| {
+                [ca * p[0] - sa * p[1] + t[0], sa * p[0] + ca * p[1] + t[1]]
+            };
+            let right = map([b, y], ca, sa, t);
+            let left = map([-b, y], ca, sa, t);
+            let (theta, pref) = if phi[k] != 0.0 {
+                (phi[k], [b, y])
+            } else {
+                (phi[n + k], [-b, y])
+            };
+            if theta != 0.0 {
+                // T_k(r) = R_{α+θ} r + R_α (p − R_θ p) + t
+                let (ct, st) = (theta.cos(), theta.sin());
+                let d = [
+                    pref[0] - (ct * pref[0] - st * pref[1]),
+                    pref[1] - (st * pref[0] + ct * pref[1]),
+                ];
+                t = [ca * d[0] - sa * d[1] + t[0], sa * d[0] + ca * d[1] + t[1]];
+                alpha += theta;
+                ca = alpha.cos();
+                sa = alpha.sin();
+            }
+            let centre = map([0.0, y + 0.5 * self.blocks[k].height], ca, sa, t);
+            pose.right_pivots.push(right);
+            pose.left_pivots.push(left);
+            pose.centres.push(centre);
+            pose.block_angles.push(alpha);
+        }
+        pose.update_sums(self);
+    }
+}
+
+/// Current positions of the pivots and block centres, with the suffix sums that make each mass
+/// matrix entry an O(1) computation.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Pose {
+    /// Current right corner of each interface (pivot of `phĭ_k`).
+    pub right_pivots: Vec<[f64; 2]>,
+    /// Current left corner of each interface (pivot of `phî_k`).
+    pub left_pivots: Vec<[f64; 2]>,
+    /// Current centre of mass of each block.
+    pub centres: Vec<[f64; 2]>,
+    /// Absolute rotation of each block (sum of the interface angles below and at it).
+    pub block_angles: Vec<f64>,
+    pub(super) suffix_mass: Vec<f64>,
+    pub(super) suffix_moment: Vec<[f64; 2]>,
+    pub(super) suffix_second: Vec<f64>,
+    pub(super) suffix_inertia: Vec<f64>,
+}
+
+impl Pose {
+    fn with_capacity(n: usize) -> Pose {
+        Pose {
+            right_pivots: Vec::with_capacity(n),
+            left_pivots: Vec::with_capacity(n),
+            centres: Vec::with_capacity(n),
+            block_angles: Vec::with_capacity(n),
+            suffix_mass: Vec::with_capacity(n),
+            suffix_moment: Vec::with_capacity(n),
+            suffix_second: Vec::with_capacity(n),
+            suffix_inertia: Vec::with_capacity(n),
+        }
+    }
+
+    fn clear(&mut self) {
+        self.right_pivots.clear();
+        self.left_pivots.clear();
+        self.centres.clear();
+        self.block_angles.clear();
+        self.suffix_mass.clear();
+        self.suffix_moment.clear();
+        self.suffix_second.clear();
+        self.suffix_inertia.clear();
+    }
+
+    fn update_sums(&mut self, column: &Column) {
+        let n = self.centres.len();
+        self.suffix_mass.resize(n, 0.0);
+        self.suffix_moment.resize(n, [0.0; 2]);
+        self.suffix_second.resize(n, 0.0);
+        self.suffix_inertia.resize(n, 0.0);
+        let (mut s0, mut s1, mut s2, mut si) = (0.0, [0.0, 0.0], 0.0, 0.0);
+        for j in (0..n).rev() {
+            let m = column.blocks[j].mass;
+            let c = self.centres[j];
+            s0 += m;
+            s1 = [s1[0] + m * c[0], s1[1] + m * c[1]];
+            s2 += m * (c[0] * c[0] + c[1] * c[1]);
+            si += column.inertia[j];
+            self.suffix_mass[j] = s0;
+            self.suffix_moment[j] = s1;
+            self.suffix_second[j] = s2;
+            self.suffix_inertia[j] = si;
+        }
+    }
+
+    pub(super) fn pivot(&self, a: usize) -> [f64; 2] {
+        let n = self.centres.len();
+        if a < n {
+            self.right_pivots[a]
+        } else {
+            self.left_pivots[a - n]
+        }
+    }
+
+    /// Total mass of the part above interface `k` and its centre of mass.
+    pub(crate) fn mass_above(&self, k: usize) -> (f64, [f64; 2]) {
+        let s0 = self.suffix_mass[k];
+        (
+            s0,
+            [self.suffix_moment[k][0] / s0, self.suffix_moment[k][1] / s0],
+        )
+    }
+}

@@ -1,0 +1,309 @@
+//! Householder QR with column pivoting of a small dense `k × c` matrix (row-major), the null-space
+//! basis of the constrained faces: `Kᵀ Π = Q R`, `Q = H_0 H_1 … H_{ρ−1}`. Its first `ρ` columns
+//! span the range of `Kᵀ`, the other `k − ρ` the null space of `K`. `Q` is never formed: the
+//! reflectors are applied to vectors and to symmetric matrices.
+
+/// A rank-revealing QR factorisation `Kᵀ Π = Q R` of the `k × c` matrix `Kᵀ`.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct PivotedQr {
+    /// Rows of `Kᵀ` (the size of the face).
+    pub k: usize,
+    /// Columns of `Kᵀ` (constraint rows).
+    pub c: usize,
+    /// Numerical rank `ρ`.
+    pub rank: usize,
+    /// `R` (row-major `c × c`, upper triangular in its first `ρ` rows; only those are used).
+    pub r: Vec<f64>,
+    /// Column permutation: column `j` of `Kᵀ Π` is column `perm[j]` of `Kᵀ`.
+    pub perm: Vec<usize>,
+    /// Householder vectors, `v_s` of length `k − s` stored at `vecs[s * k ..]` (unit first entry
+    /// implicit in `beta`): `H_s = I − beta_s v_s v_sᵀ` acting on entries `s..k`.
+    vecs: Vec<f64>,
+    beta: Vec<f64>,
+    work: Vec<f64>,
+}
+
+impl PivotedQr {
+    /// Factors the row-major `k × c` matrix `kt` (it is overwritten). A column whose remaining
+    /// norm is below `rank_tolerance` times the largest initial column norm ends the
+    /// factorisation: the rank is the number of reflectors applied.
+    pub fn factor(&mut self, kt: &mut [f64], k: usize, c: usize, rank_tolerance: f64) {
+        debug_assert_eq!(kt.len(), k * c);
+        self.k = k;
+        self.c = c;
+        self.rank = 0;
+        self.perm.clear();
+        self.perm.extend(0..c);
+        self.vecs.clear();
+        self.vecs.resize(k * c.min(k), 0.0);
+        self.beta.clear();
+        self.r.clear();
+        self.r.resize(c * c, 0.0);
+        let col_norm2 =
+            |kt: &[f64], j: usize, from: usize| (from..k).map(|i| kt[i * c + j].powi(2)).sum();
+        let largest = (0..c).fold(0.0_f64, |a, j| a.max(col_norm2(kt, j, 0)));
+        let floor = rank_tolerance * rank_tolerance * largest;
+        for s in 0..c.min(k) {
+            // Pivot: the column with the largest remaining norm.
+            let (mut best, mut best_norm) = (s, -1.0);
+            for j in s..c {
+                let nrm = col_norm2(kt, j, s);
+                if nrm > best_norm {
+                    best = j;
+                    best_norm = nrm;
+                }
+            }
+            if best_norm.is_nan() || best_norm <= floor || best_norm == 0.0 {
+                break;
+            }
+            if best != s {
+                for i in 0..k {
+                    kt.swap(i * c + s, i * c + best);
+                }
+                self.perm.swap(s, best);
+            }
+            // Reflector that maps column s (rows s..k) onto −sign(x_s) ‖x‖ e_s.
+            let norm = best_norm.sqrt();
+            let x0 = kt[s * c + s];
+            let alpha = if x0 >= 0.0 { -norm } else { norm };
+            let v = &mut self.vecs[s * k..s * k + (k - s)];
+            v[0] = x0 - alpha;
+            for i in s + 1..k {
+                v[i - s] = kt[i * c + s];
+            }
+            let vnorm2: f64 = v.iter().map(|x| x * x).sum();
+            let beta = if vnorm2 > 0.0 { 2.0 / vnorm2 } else { 0.0 };
+            self.beta.push(beta);
+            kt[s * c + s] = alpha;
+            for i in s + 1..k {
+                kt[i * c + s] = 0.0;
+            }
+            for j in s + 1..c {
+                let dot: f64 = (s..k).map(|i| v[i - s] * kt[i * c + j]).sum();
+                let f = beta * dot;
+                for i in s..k {
+                    kt[i * c + j] -= f * v[i - s];
+                }
+            }
+            self.rank = s + 1;
+        }
+        for i in 0..self.rank {
+            for j in i..c {
+                self.r[i * c + j] = kt[i * c + j];
+            }
+        }
+    }
+
+    /// `x ← Qᵀ x` (length `k`).
+    pub fn apply_qt(&self, x: &mut [f64]) {
+        for s in 0..self.rank {
+            self.reflect(s, x);
+        }
+    }
+
+    /// `x ← Q x` (length `k`).
+    pub fn apply_q(&self, x: &mut [f64]) {
+        for s in (0..self.rank).rev() {
+            self.reflect(s, x);
+        }
+    }
+
+    fn reflect(&self, s: usize, x: &mut [f64]) {
+        let k = self.k;
+        let v = &self.vecs[s * k..s * k + (k - s)];
+        let dot: f64 = v.iter().zip(&x[s..]).map(|(a, b)| a * b).sum();
+        let f = self.beta[s] * dot;
+        for (xi, vi) in x[s..].iter_mut().zip(v) {
+            *xi -= f * vi;
+        }
+    }
+
+    /// `A ← Qᵀ A Q` for the symmetric row-major `k × k` matrix `a`, one reflector at a time as
+    /// the symmetric rank-two update `H A H = A − v uᵀ − u vᵀ` with `w = A v`,
+    /// `u = β w − ½ β² (vᵀw) v`.
+    pub fn congruence(&mut self, a: &mut [f64]) {
+        let k = self.k;
+        let mut w = std::mem::take(&mut self.work);
+        for s in 0..self.rank {
+            let v = &self.vecs[s * k..s * k + (k - s)];
+            let beta = self.beta[s];
+            w.clear();
+            w.extend((0..k).map(|i| {
+                a[i * k + s..(i + 1) * k]
+                    .iter()
+                    .zip(v)
+                    .map(|(x, y)| x * y)
+                    .sum::<f64>()
+            }));
+            let gamma: f64 = v.iter().zip(&w[s..]).map(|(x, y)| x * y).sum();
+            let half = 0.5 * beta * beta * gamma;
+            for i in 0..k {
+                w[i] *= beta;
+                if i >= s {
+                    w[i] -= half * v[i - s];
+                }
+            }
+            // Rows and columns before s: only the columns s.. change (A_ij −= u_i v_j).
+            for i in 0..k {
+                let ui = w[i];
+                let vi = if i >= s { v[i - s] } else { 0.0 };
+                let row = &mut a[i * k..(i + 1) * k];
+                if vi == 0.0 {
+                    for (x, vj) in row[s..].iter_mut().zip(v) {
+                        *x -= ui * vj;
+                    }
+                } else {
+                    for (j, x) in row.iter_mut().enumerate() {
+                        let vj = if j >= s { v[j - s] } else { 0.0 };
+                        *x -= vi * w[j] + ui * vj;
+                    }
+                }
+            }
+        }
+        self.work = w;
+    }
+
+    /// Solves `R11ᵀ u = (Πᵀ r)[..ρ]` (forward substitution) and returns the residual of the other
+    /// `c − ρ` equations, `max |R12ᵀ u − (Πᵀ r)[ρ..]|`: zero when `r` lies in the range of `K`.
+    pub fn solve_range(&self, rhs: &[f64], u: &mut [f64]) -> f64 {
+        let (c, rank) = (self.c, self.rank);
+        for i in 0..rank {
+            let mut s = rhs[self.perm[i]];
+            for j in 0..i {
+                s -= self.r[j * c + i] * u[j];
+            }
+            u[i] = s / self.r[i * c + i];
+        }
+        let mut residual = 0.0_f64;
+        for i in rank..c {
+            let mut s = rhs[self.perm[i]];
+            for j in 0..rank {
+                s -= self.r[j * c + i] * u[j];
+            }
+            residual = residual.max(s.abs());
+        }
+        residual
+    }
+
+    /// Multipliers `μ` (length `c`) of `Kᵀ μ = g` from `w = Qᵀ g` (first `ρ` entries used):
+    /// `R11 ν = w[..ρ]`, `μ = Π ν` with the entries beyond the rank set to zero.
+    pub fn multipliers(&self, w: &[f64], mu: &mut [f64]) {
+        let (c, rank) = (self.c, self.rank);
+        mu.iter_mut().for_each(|m| *m = 0.0);
+        let mut nu = vec![0.0; rank];
+        for i in (0..rank).rev() {
+            let mut s = w[i];
+            for j in i + 1..rank {
+                s -= self.r[i * c + j] * nu[j];
+            }
+            nu[i] = s / self.r[i * c + i];
+        }
+        for i in 0..rank {
+            mu[self.perm[i]] = nu[i];
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn matmul_t(kt: &[f64], k: usize, c: usize, y: &[f64]) -> Vec<f64> {
+        (0..c)
+            .map(|j| (0..k).map(|i| kt[i * c + j] * y[i]).sum())
+            .collect()
+    }
+
+    #[test]
+    fn range_and_null_space() {
+        // K (2 × 4): two independent rows.
+        let k = 4;
+        let c = 2;
+        let kt0 = vec![1.0, 0.5, 2.0, -1.0, 0.0, 3.0, -1.0, 0.25];
+        let mut kt = kt0.clone();
+        let mut qr = PivotedQr::default();
+        qr.factor(&mut kt, k, c, 1e-12);
+        assert_eq!(qr.rank, 2);
+        // Particular solution of K y = r.
+        let r = [0.7, -1.3];
+        let mut u = vec![0.0; k];
+        assert!(qr.solve_range(&r, &mut u) == 0.0);
+        let mut y = u.clone();
+        qr.apply_q(&mut y);
+        let ky = matmul_t(&kt0, k, c, &y);
+        for j in 0..c {
+            assert!((ky[j] - r[j]).abs() < 1e-12, "{ky:?}");
+        }
+        // Null space: Q e_j, j >= rank.
+        for j in 2..k {
+            let mut e = vec![0.0; k];
+            e[j] = 1.0;
+            qr.apply_q(&mut e);
+            let ke = matmul_t(&kt0, k, c, &e);
+            assert!(ke.iter().all(|v| v.abs() < 1e-12));
+        }
+    }
+
+    #[test]
+    fn detects_rank_deficiency_and_inconsistency() {
+        // Second row = 2 × first.
+        let (k, c) = (3, 2);
+        let mut kt = vec![1.0, 2.0, -1.0, -2.0, 0.5, 1.0];
+        let mut qr = PivotedQr::default();
+        qr.factor(&mut kt, k, c, 1e-12);
+        assert_eq!(qr.rank, 1);
+        let mut u = vec![0.0; k];
+        assert!(qr.solve_range(&[1.0, 2.0], &mut u) < 1e-14);
+        assert!(qr.solve_range(&[1.0, 1.0], &mut u) > 0.1);
+    }
+
+    #[test]
+    fn congruence_matches_explicit_q() {
+        // One reflector (k = 3) and three (k = 5, rank 3).
+        let cases: [(usize, usize, Vec<f64>); 2] = [
+            (3, 1, vec![1.0, 2.0, 2.0]),
+            (
+                5,
+                3,
+                vec![
+                    1.0, 0.0, 2.0, 0.5, 1.0, -1.0, -0.3, 0.2, 0.7, 2.0, 1.5, 0.1, 0.4, -0.6, 1.1,
+                ],
+            ),
+        ];
+        for (k, c, kt0) in cases {
+            let mut kt = kt0.clone();
+            let mut qr = PivotedQr::default();
+            qr.factor(&mut kt, k, c, 1e-12);
+            assert_eq!(qr.rank, c);
+            let a0: Vec<f64> = (0..k * k)
+                .map(|x| {
+                    let (i, j) = (x / k, x % k);
+                    let d = if i == j { 5.0 } else { 0.0 };
+                    d + 1.0 / (1.0 + (i + j) as f64)
+                })
+                .collect();
+            let mut a = a0.clone();
+            qr.congruence(&mut a);
+            let mut q = vec![0.0; k * k];
+            for j in 0..k {
+                let mut e = vec![0.0; k];
+                e[j] = 1.0;
+                qr.apply_q(&mut e);
+                for i in 0..k {
+                    q[i * k + j] = e[i];
+                }
+            }
+            for i in 0..k {
+                for j in 0..k {
+                    let mut s = 0.0;
+                    for p in 0..k {
+                        for r in 0..k {
+                            s += q[p * k + i] * a0[p * k + r] * q[r * k + j];
+                        }
+                    }
+                    assert!((s - a[i * k + j]).abs() < 1e-12, "k = {k}: ({i}, {j})");
+                }
+            }
+        }
+    }
+}

@@ -1,0 +1,438 @@
+//! The cone problem of SPEC §4 with linear equality constraints (SPEC §9): over the generators
+//! `D` (free, bounded, grouped corners) minimise `f(y) = ½ yᵀAy − bᵀy`, `A = DᵀMD`, subject to
+//! `(G D) y = r` — the closure of a loop (`G v = 0` for an impact, `G a = −Ġ v` for an opening).
+//!
+//! A face (a set `S` of generators allowed to be non-zero) is an equality-constrained quadratic
+//! problem, solved in the null space of the face's constraint columns `K = (GD)_S`: `Kᵀ Π = Q R`
+//! (Householder, column pivoting), `y = Q [u; z]` with `R11ᵀ u = Πᵀ r` and
+//! `(QᵀA_SS Q)_22 z = (Qᵀ b)_2 − (QᵀA_SS Q)_21 u`. `M` of a loop is singular on the full DOF set
+//! (the cut joint moves no mass): only this reduced matrix must be positive definite, and a
+//! Cholesky failure there is the not-positive-definite error. The multipliers `μ` of `Kᵀμ = b −
+//! A y` are the generalised closure forces; they give the gradients that the projection solver
+//! uses to decide what opens.
+//!
+//! Scaling: generators with mass are Jacobi-scaled as in [`ConeProblem`] (unit diagonal);
+//! massless ones (the cut joint's DOFs, whose rows of `M` are zero) get the scale of the heaviest
+//! generator instead of a division by zero, so their rates are judged like the others'. The
+//! constraint rows are normalised to unit length and reduced to a linearly independent set.
+
+use crate::error::{ErrorKind, RockingError};
+use crate::model::cholesky;
+use crate::model::cone::{ConeProblem, Generator};
+use crate::model::constrained::householder::PivotedQr;
+
+/// A diagonal entry of `DᵀMD` below this fraction of the largest is a massless generator.
+const MASSLESS: f64 = 1e-12;
+/// Relative column norm under which a face's constraint columns are linearly dependent.
+const RANK_TOLERANCE: f64 = 1e-10;
+/// Relative residual under which a right-hand side lies in the range of a face's constraints.
+const CONSISTENCY: f64 = 1e-9;
+
+/// A cone problem with equality constraints, in scaled variables `y = scale ⊙ ŷ`.
+pub(crate) struct ConstrainedProblem {
+    /// The unconstrained part: generators, groups, `Â`, `b̂`, scales, thresholds.
+    pub cone: ConeProblem,
+    /// Number of (independent, normalised) constraint rows.
+    pub nc: usize,
+    /// `Ĉ = G D S`, row-major `nc × p`, unit rows.
+    pub c: Vec<f64>,
+    /// Right-hand side of the normalised rows.
+    pub r: Vec<f64>,
+    /// A feasible point on the free generators alone (minimum norm, zero elsewhere): the
+    /// configuration as it is satisfies its closure. Scaled, length `p`.
+    pub start: Vec<f64>,
+}
+
+/// Buffers of the face solves.
+#[derive(Default)]
+pub(crate) struct FaceWork {
+    qr: PivotedQr,
+    kt: Vec<f64>,
+    h: Vec<f64>,
+    factor: Vec<f64>,
+    rhs: Vec<f64>,
+    /// Face solution `ŷ_S`, in the order of the set.
+    pub y: Vec<f64>,
+    /// Multipliers of the rows used (length `nc`, zero for rows not used).
+    pub mu: Vec<f64>,
+}
+
+impl FaceWork {
+    /// Length of the projection of `e_idx` on the null space of the last face's constraint
+    /// columns: zero when generator `idx` of the face cannot move without breaking the
+    /// constraints (its column is independent of the others'), so that its exact step is zero.
+    pub fn null_weight(&self, idx: usize) -> f64 {
+        let k = self.y.len();
+        let mut e = vec![0.0; k];
+        e[idx] = 1.0;
+        self.qr.apply_qt(&mut e);
+        e[self.qr.rank..].iter().map(|x| x * x).sum::<f64>().sqrt()
+    }
+}
+
+/// What a face solve found besides `ŷ_S` and `μ` (left in [`FaceWork`]).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct FaceInfo {
+    /// `f(ŷ) = ½ ŷᵀÂŷ − b̂ᵀŷ`.
+    pub objective: f64,
+    /// Rank of the face's constraint columns.
+    pub rank: usize,
+    /// Condition estimate of the reduced matrix.
+    pub condition: f64,
+}
+
+fn not_pd(detail: impl Into<String>) -> RockingError {
+    RockingError::new(ErrorKind::NotPositiveDefinite, detail)
+}
+
+impl ConstrainedProblem {
+    /// Builds the scaled problem from the row-major `m × m` mass matrix, the right-hand side
+    /// `rhs` (`b = Dᵀ rhs`), the row-major `nc × m` constraint matrix `g` and its right-hand side
+    /// `g_rhs` (length `nc`).
+    ///
+    /// Fails with [`ErrorKind::NotPositiveDefinite`] when `DᵀMD` has a negative diagonal entry or
+    /// is not positive definite on the null space of the constraints, and with
+    /// [`ErrorKind::InconsistentState`] when the free generators (the open DOFs, which the model
+    /// keeps) cannot satisfy the constraints: the configuration as given does not close.
+    #[allow(clippy::too_many_arguments)]
+    pub fn new(
+        gens: Vec<Generator>,
+        mass: &[f64],
+        m: usize,
+        rhs: &[f64],
+        g: &[f64],
+        nc: usize,
+        g_rhs: &[f64],
+        tolerance: f64,
+    ) -> Result<ConstrainedProblem, RockingError> {
+        let p = gens.len();
+        let mut a = vec![0.0; p * p];
+        let mut b = vec![0.0; p];
+        let mut cg = vec![0.0; nc * p];
+        for i in 0..p {
+            for j in i..p {
+                let mut s = 0.0;
+                for &(di, ci) in gens[i].terms() {
+                    for &(dj, cj) in gens[j].terms() {
+                        s += ci * cj * mass[di * m + dj];
+                    }
+                }
+                a[i * p + j] = s;
+                a[j * p + i] = s;
+            }
+            b[i] = gens[i].terms().iter().map(|&(d, c)| c * rhs[d]).sum();
+            for row in 0..nc {
+                cg[row * p + i] = gens[i]
+                    .terms()
+                    .iter()
+                    .map(|&(d, c)| c * g[row * m + d])
+                    .sum();
+            }
+        }
+        let dmax = (0..p).fold(0.0_f64, |acc, i| acc.max(a[i * p + i]));
+        if p > 0 && (dmax.is_nan() || dmax <= 0.0) {
+            return Err(not_pd("no DOF of the configuration carries mass"));
+        }
+        let mut scale = vec![0.0; p];
+        for i in 0..p {
+            let d = a[i * p + i];
+            if d.is_nan() || d < -MASSLESS * dmax {
+                return Err(not_pd(format!(
+                    "diagonal entry of a configuration's mass matrix is {d}"
+                )));
+            }
+            scale[i] = if d > MASSLESS * dmax {
+                1.0 / d.sqrt()
+            } else {
+                1.0 / dmax.sqrt()
+            };
+        }
+        for i in 0..p {
+            let massive = a[i * p + i] > MASSLESS * dmax;
+            for j in 0..p {
+                a[i * p + j] *= scale[i] * scale[j];
+            }
+            if massive {
+                a[i * p + i] = 1.0;
+            }
+            b[i] *= scale[i];
+            for row in 0..nc {
+                cg[row * p + i] *= scale[i];
+            }
+        }
+        // Normalise the rows; a row that touches no generator must have a zero right-hand side.
+        let mut rows = Vec::with_capacity(nc);
+        let mut rr = Vec::with_capacity(nc);
+        for row in 0..nc {
+            let norm = cg[row * p..(row + 1) * p]
+                .iter()
+                .map(|x| x * x)
+                .sum::<f64>()
+                .sqrt();
+            if norm > 0.0 {
+                rows.extend(cg[row * p..(row + 1) * p].iter().map(|x| x / norm));
+                rr.push(g_rhs[row] / norm);
+            } else if g_rhs[row] != 0.0 {
+                return Err(RockingError::new(
+                    ErrorKind::InconsistentState,
+                    format!(
+                        "constraint row {row} is zero on every DOF the model may use but its \
+                         right-hand side is {}",
+                        g_rhs[row]
+                    ),
+                ));
+            }
+        }
+        let bmax = b.iter().fold(0.0_f64, |acc, v| acc.max(v.abs()));
+        let cone = ConeProblem {
+            groups: groups_of(&gens),
+            singles: singles_of(&gens),
+            gens,
+            a,
+            b,
+            scale,
+            threshold: tolerance * bmax,
+            tolerance,
+        };
+        let mut problem = ConstrainedProblem {
+            cone,
+            nc: rr.len(),
+            c: rows,
+            r: rr,
+            start: vec![0.0; p],
+        };
+        problem.reduce_rows()?;
+        problem.find_start()?;
+        // The gradient scale of a problem with a non-zero right-hand side includes Â ŷ₀.
+        let mut grad_scale = bmax;
+        for i in 0..p {
+            let row = &problem.cone.a[i * p..(i + 1) * p];
+            let v: f64 = row.iter().zip(&problem.start).map(|(x, y)| x * y).sum();
+            grad_scale = grad_scale.max(v.abs());
+        }
+        problem.cone.threshold = tolerance * grad_scale;
+        // Positive definiteness on the null space of all constraint columns: every face's
+        // reduced matrix is a principal part of it.
+        let all: Vec<usize> = (0..p).collect();
+        let rows_all: Vec<usize> = (0..problem.nc).collect();
+        let mut ws = FaceWork::default();
+        problem.solve_face(&all, &rows_all, &mut ws)?;
+        Ok(problem)
+    }
+
+    /// Number of generators.
+    pub fn p(&self) -> usize {
+        self.cone.p()
+    }
+
+    /// Keeps a linearly independent subset of the constraint rows; a dependent row's right-hand
+    /// side must be the same combination of the others'.
+    fn reduce_rows(&mut self) -> Result<(), RockingError> {
+        let (p, nc) = (self.p(), self.nc);
+        if nc == 0 {
+            return Ok(());
+        }
+        let mut kt = vec![0.0; p * nc];
+        for i in 0..p {
+            for row in 0..nc {
+                kt[i * nc + row] = self.c[row * p + i];
+            }
+        }
+        let mut qr = PivotedQr::default();
+        qr.factor(&mut kt, p, nc, RANK_TOLERANCE);
+        let mut u = vec![0.0; p];
+        let residual = qr.solve_range(&self.r, &mut u);
+        if residual > CONSISTENCY * (1.0 + self.rmax()) {
+            return Err(RockingError::new(
+                ErrorKind::InconsistentState,
+                format!(
+                    "the constraint rows are linearly dependent but their right-hand sides are \
+                     not (residual {residual:e})"
+                ),
+            ));
+        }
+        if qr.rank < nc {
+            let keep: Vec<usize> = qr.perm[..qr.rank].to_vec();
+            let mut c = Vec::with_capacity(keep.len() * p);
+            for &row in &keep {
+                c.extend_from_slice(&self.c[row * p..(row + 1) * p]);
+            }
+            self.r = keep.iter().map(|&row| self.r[row]).collect();
+            self.c = c;
+            self.nc = keep.len();
+        }
+        Ok(())
+    }
+
+    fn rmax(&self) -> f64 {
+        self.r.iter().fold(0.0_f64, |a, v| a.max(v.abs()))
+    }
+
+    /// The minimum-norm point of the free generators that satisfies the constraints.
+    fn find_start(&mut self) -> Result<(), RockingError> {
+        let free: Vec<usize> = (0..self.p())
+            .filter(|&i| !self.cone.gens[i].bounded)
+            .collect();
+        let rows: Vec<usize> = (0..self.nc).collect();
+        let mut qr = PivotedQr::default();
+        let mut u = vec![0.0; free.len()];
+        let residual = self.particular(&free, &rows, &mut qr, &mut u);
+        if residual > CONSISTENCY * (1.0 + self.rmax()) {
+            return Err(RockingError::new(
+                ErrorKind::InconsistentState,
+                format!(
+                    "the open DOFs cannot satisfy the constraints G x = r (residual {residual:e}): \
+                     the configuration as given does not close"
+                ),
+            ));
+        }
+        for (&i, &v) in free.iter().zip(&u) {
+            self.start[i] = v;
+        }
+        Ok(())
+    }
+
+    /// Minimum-norm solution `u` (length `set.len()`) of `Ĉ_{rows,set} ŷ = r_rows`, and the
+    /// residual of the equations the face cannot satisfy.
+    pub fn particular(
+        &self,
+        set: &[usize],
+        rows: &[usize],
+        qr: &mut PivotedQr,
+        u: &mut [f64],
+    ) -> f64 {
+        let (k, c, p) = (set.len(), rows.len(), self.p());
+        let mut kt = vec![0.0; k * c];
+        for (i, &s) in set.iter().enumerate() {
+            for (j, &row) in rows.iter().enumerate() {
+                kt[i * c + j] = self.c[row * p + s];
+            }
+        }
+        qr.factor(&mut kt, k, c, RANK_TOLERANCE);
+        let rhs: Vec<f64> = rows.iter().map(|&row| self.r[row]).collect();
+        u.iter_mut().for_each(|x| *x = 0.0);
+        let residual = qr.solve_range(&rhs, u);
+        qr.apply_q(u);
+        residual
+    }
+
+    /// Solves the face `set` with the constraint rows `rows`: `ŷ_S` into `ws.y`, `μ` into
+    /// `ws.mu`. `None` when the face cannot satisfy the constraints.
+    pub fn solve_face(
+        &self,
+        set: &[usize],
+        rows: &[usize],
+        ws: &mut FaceWork,
+    ) -> Result<Option<FaceInfo>, RockingError> {
+        let (k, c, p) = (set.len(), rows.len(), self.p());
+        ws.kt.clear();
+        for &s in set {
+            ws.kt.extend(rows.iter().map(|&row| self.c[row * p + s]));
+        }
+        ws.qr.factor(&mut ws.kt, k, c, RANK_TOLERANCE);
+        let rank = ws.qr.rank;
+        ws.rhs.clear();
+        ws.rhs.extend(rows.iter().map(|&row| self.r[row]));
+        ws.y.clear();
+        ws.y.resize(k, 0.0);
+        let residual = ws.qr.solve_range(&ws.rhs, &mut ws.y);
+        let rscale = rows
+            .iter()
+            .fold(0.0_f64, |a, &row| a.max(self.r[row].abs()));
+        if residual > CONSISTENCY * (1.0 + rscale) {
+            return Ok(None);
+        }
+        // Reduced problem in u = Qᵀ y: H = Qᵀ Â_SS Q, g = Qᵀ b̂_S.
+        ws.h.clear();
+        for &r in set {
+            ws.h.extend(set.iter().map(|&s| self.cone.a[r * p + s]));
+        }
+        ws.qr.congruence(&mut ws.h);
+        let mut g: Vec<f64> = set.iter().map(|&s| self.cone.b[s]).collect();
+        ws.qr.apply_qt(&mut g);
+        let free = k - rank;
+        ws.factor.clear();
+        for i in rank..k {
+            ws.factor
+                .extend_from_slice(&ws.h[i * k + rank..(i + 1) * k]);
+        }
+        let mut z: Vec<f64> = (rank..k)
+            .map(|i| g[i] - (0..rank).map(|j| ws.h[i * k + j] * ws.y[j]).sum::<f64>())
+            .collect();
+        let mut condition = 1.0;
+        if free > 0 {
+            if !cholesky::factor(&mut ws.factor, free) {
+                return Err(not_pd(
+                    "the mass matrix of a configuration is not positive definite on the null \
+                     space of the constraints",
+                ));
+            }
+            cholesky::solve(&ws.factor, free, &mut z);
+            condition = cholesky::condition_estimate(&ws.factor, free);
+        }
+        ws.y[rank..].copy_from_slice(&z);
+        ws.qr.apply_q(&mut ws.y);
+        // Objective and multipliers: Kᵀ μ = b̂_S − Â_SS ŷ.
+        let mut grad = vec![0.0; k];
+        let mut quad = 0.0;
+        let mut lin = 0.0;
+        for (i, &r) in set.iter().enumerate() {
+            let ay: f64 = set
+                .iter()
+                .zip(&ws.y)
+                .map(|(&s, y)| self.cone.a[r * p + s] * y)
+                .sum();
+            quad += ws.y[i] * ay;
+            lin += self.cone.b[r] * ws.y[i];
+            grad[i] = self.cone.b[r] - ay;
+        }
+        ws.qr.apply_qt(&mut grad);
+        let mut mu_rows = vec![0.0; c];
+        ws.qr.multipliers(&grad, &mut mu_rows);
+        ws.mu.clear();
+        ws.mu.resize(self.nc, 0.0);
+        for (&row, &v) in rows.iter().zip(&mu_rows) {
+            ws.mu[row] = v;
+        }
+        Ok(Some(FaceInfo {
+            objective: 0.5 * quad - lin,
+            rank,
+            condition,
+        }))
+    }
+
+    /// Gradient `b̂_j − (Â ŷ)_j − (Ĉᵀ μ)_j` of generator `j` at the point `y` (length `p`,
+    /// non-zero only on `set`), with the multipliers `mu` (length `nc`).
+    pub fn gradient(&self, j: usize, set: &[usize], y: &[f64], mu: &[f64]) -> f64 {
+        let p = self.p();
+        let row = &self.cone.a[j * p..(j + 1) * p];
+        let ay: f64 = set.iter().map(|&s| row[s] * y[s]).sum();
+        let cm: f64 = (0..self.nc).map(|r| self.c[r * p + j] * mu[r]).sum();
+        self.cone.b[j] - ay - cm
+    }
+}
+
+/// The two corners of each closed interface (generator index pairs), as [`ConeProblem::new`].
+pub(crate) fn groups_of(gens: &[Generator]) -> Vec<[usize; 2]> {
+    let mut members: Vec<Vec<usize>> = Vec::new();
+    for (i, g) in gens.iter().enumerate() {
+        if let Some(k) = g.group {
+            if members.len() <= k {
+                members.resize(k + 1, Vec::new());
+            }
+            members[k].push(i);
+        }
+    }
+    members
+        .into_iter()
+        .filter(|m| m.len() == 2)
+        .map(|m| [m[0], m[1]])
+        .collect()
+}
+
+/// Bounded generators outside any group.
+pub(crate) fn singles_of(gens: &[Generator]) -> Vec<usize> {
+    (0..gens.len())
+        .filter(|&i| gens[i].bounded && gens[i].group.is_none())
+        .collect()
+}

@@ -1,0 +1,568 @@
+//! Scenes: a column, an excitation and simulation settings, as JSON — the one schema of
+//! `rocking simulate` and the Python package's `rocking.simulate` (behind the `serde` feature).
+//!
+//! ```json
+//! {
+//!   "blocks": [{"width": 0.1, "height": 0.3, "mass": 15, "contact_width": 0.096}, ...],
+//!   "initial_angles": [0.0, -0.153],
+//!   "excitation": {"type": "half_sine", "amplitude": 3.0, "duration": 0.5},
+//!   "impacts": 1, "duration": 2.0, "dt": 0.001, "integrator": "wilson"
+//! }
+//! ```
+//! Unknown fields and bad values are errors that name the field. Record paths are relative to
+//! the scene file.
+
+use std::path::{Path, PathBuf};
+
+use crate::driver::{
+    EventLocator, InitialState, Integrator, PhysicsOptions, Recording, SimulationOptions,
+    SteppingOptions, StoppingOptions,
+};
+use crate::ground::excitation::{Excitation, Pulse};
+use crate::ground::records::{self, PlainFormat};
+use crate::model::column::{Block, Column};
+use crate::model::cone::{ModelOptions, Solver};
+use serde::Deserialize;
+
+/// One block, bottom to top.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BlockSpec {
+    pub width: f64,
+    pub height: f64,
+    pub mass: f64,
+    #[serde(default)]
+    pub inertia: Option<f64>,
+    #[serde(default)]
+    pub contact_width: Option<f64>,
+}
+
+/// The ground motion.
+#[derive(Debug, Deserialize)]
+#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+pub enum ExcitationSpec {
+    /// No excitation (free rocking from `initial_angles`).
+    None,
+    /// `amplitude · sin(π t / duration)` on `[0, duration]` (thesis Fig. 8a).
+    HalfSine { amplitude: f64, duration: f64 },
+    /// One full period of a sine; `duration` is the WHOLE period (each lobe lasts duration/2;
+    /// the thesis's `t_p` of Fig. 8b is the lobe).
+    FullSine { amplitude: f64, duration: f64 },
+    /// `count` consecutive half sines of alternating sign, each lasting `duration` (thesis Fig. 8c:
+    /// three half sines).
+    HalfSines {
+        amplitude: f64,
+        duration: f64,
+        count: u32,
+    },
+    /// Constant `amplitude` on `[0, duration)`.
+    Rectangular { amplitude: f64, duration: f64 },
+    /// Symmetric triangle peaking at `duration / 2`.
+    Triangular { amplitude: f64, duration: f64 },
+    /// Ricker wavelet of peak `amplitude` and central `frequency` (Hz).
+    Ricker { amplitude: f64, frequency: f64 },
+    /// Mavroeidis–Papageorgiou (2003) pulse of peak acceleration `amplitude`.
+    MavroeidisPapageorgiou {
+        amplitude: f64,
+        frequency: f64,
+        gamma: f64,
+        nu: f64,
+    },
+    /// A recorded motion: PEER `.AT2` (in g), or plain text (one column with `dt`, or two
+    /// columns t, a) in m/s² unless `units` is "g". Scaled to `scale_to_pga` [m/s²] if given.
+    Record {
+        path: PathBuf,
+        #[serde(default)]
+        scale_to_pga: Option<f64>,
+        #[serde(default)]
+        dt: Option<f64>,
+        #[serde(default)]
+        units: Option<String>,
+    },
+}
+
+/// Integrator choice: a name, or an object with parameters.
+#[derive(Debug, Deserialize)]
+#[serde(untagged)]
+pub enum IntegratorSpec {
+    Name(String),
+    Wilson {
+        #[serde(rename = "type")]
+        kind: String,
+        theta: f64,
+    },
+}
+
+/// What to write.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OutputSpec {
+    /// Write `history.csv` (default true).
+    #[serde(default = "yes")]
+    pub history: bool,
+    /// Keep every k-th step in the history (default 1).
+    #[serde(default = "one")]
+    pub every: usize,
+    /// Write `events.jsonl` (default true).
+    #[serde(default = "yes")]
+    pub events: bool,
+}
+
+fn yes() -> bool {
+    true
+}
+fn one() -> usize {
+    1
+}
+
+impl Default for OutputSpec {
+    fn default() -> OutputSpec {
+        OutputSpec {
+            history: true,
+            every: 1,
+            events: true,
+        }
+    }
+}
+
+/// A scene file.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SceneSpec {
+    /// Optional title for plots and the summary.
+    #[serde(default)]
+    pub title: Option<String>,
+    pub blocks: Vec<BlockSpec>,
+    #[serde(default)]
+    pub initial_angles: Option<Vec<f64>>,
+    pub excitation: ExcitationSpec,
+    /// Consecutive impacts per closing (default 1).
+    #[serde(default = "one_u32")]
+    pub impacts: u32,
+    pub duration: f64,
+    pub dt: f64,
+    /// "wilson" (default), "newmark", "rk4", "dop853", or `{"type": "wilson", "theta": 1.4}`.
+    #[serde(default)]
+    pub integrator: Option<IntegratorSpec>,
+    /// "linear" (thesis, default) or "hermite" (refined by re-integration with "dop853").
+    #[serde(default)]
+    pub locator: Option<String>,
+    /// "auto" (default), "enumerate" or "projection".
+    #[serde(default)]
+    pub solver: Option<String>,
+    /// Friction coefficient (default 0.7).
+    #[serde(default)]
+    pub friction: Option<f64>,
+    #[serde(default)]
+    pub gravity: Option<f64>,
+    /// Exact Lagrangian velocity terms (default false: thesis Eq. 6).
+    #[serde(default)]
+    pub exact_velocity_terms: bool,
+    /// Integrate on after static tipping until a block has fallen (default false).
+    #[serde(default)]
+    pub continue_until_fallen: bool,
+    #[serde(default)]
+    pub output: OutputSpec,
+}
+
+fn one_u32() -> u32 {
+    1
+}
+
+/// A scene ready to simulate.
+pub struct Scene {
+    pub title: String,
+    pub column: Column,
+    pub excitation: Excitation,
+    pub options: SimulationOptions,
+    pub output: OutputSpec,
+}
+
+/// A scene error: the field and what is wrong with it.
+#[derive(Debug)]
+pub struct SceneError(pub String);
+
+impl std::fmt::Display for SceneError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+fn err(field: &str, message: impl std::fmt::Display) -> SceneError {
+    SceneError(format!("{field}: {message}"))
+}
+
+/// Reads and checks a scene file.
+pub fn load(path: &Path) -> Result<Scene, SceneError> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| SceneError(format!("cannot read {}: {e}", path.display())))?;
+    let spec: SceneSpec =
+        serde_json::from_str(&text).map_err(|e| SceneError(format!("{}: {e}", path.display())))?;
+    let base = path.parent().unwrap_or(Path::new("."));
+    build(spec, base, &path.display().to_string())
+}
+
+/// Checks a parsed scene and builds the column, excitation and options.
+pub fn build(spec: SceneSpec, base: &Path, name: &str) -> Result<Scene, SceneError> {
+    if spec.blocks.is_empty() {
+        return Err(err("blocks", "needs at least one block"));
+    }
+    let blocks = spec
+        .blocks
+        .iter()
+        .map(|b| Block {
+            width: b.width,
+            height: b.height,
+            mass: b.mass,
+            inertia: b.inertia,
+            contact_width: b.contact_width,
+        })
+        .collect();
+    let column = Column::new(blocks).map_err(|e| match e {
+        crate::model::column::ColumnError::InvalidBlock { block, invalid } => err(
+            &format!("blocks[{block}].{}", invalid.field),
+            format!("{}: {}", invalid.value, invalid.rule),
+        ),
+        other => err("blocks", other),
+    })?;
+    let excitation = excitation(&spec.excitation, base)?;
+    let integrator = match &spec.integrator {
+        None => Integrator::default(),
+        Some(IntegratorSpec::Name(n)) => match n.as_str() {
+            "wilson" | "wilson_theta" => Integrator::default(),
+            "newmark" => Integrator::Newmark,
+            "rk4" => Integrator::Rk4,
+            "dop853" => Integrator::Dop853,
+            other => {
+                return Err(err(
+                    "integrator",
+                    format!("unknown integrator {other:?} (wilson, newmark, rk4, dop853)"),
+                ))
+            }
+        },
+        Some(IntegratorSpec::Wilson { kind, theta }) => {
+            if kind != "wilson" && kind != "wilson_theta" {
+                return Err(err(
+                    "integrator.type",
+                    format!("{kind:?}: only \"wilson\" takes parameters"),
+                ));
+            }
+            Integrator::WilsonTheta { theta: *theta }
+        }
+    };
+    let locator = match spec.locator.as_deref() {
+        None | Some("linear") => EventLocator::Linear,
+        Some("hermite") => EventLocator::Hermite,
+        Some(other) => {
+            return Err(err(
+                "locator",
+                format!("unknown locator {other:?} (linear, hermite)"),
+            ))
+        }
+    };
+    let solver = match spec.solver.as_deref() {
+        None | Some("auto") => Solver::Auto,
+        Some("enumerate") => Solver::Enumerate,
+        Some("projection") => Solver::Projection,
+        Some(other) => {
+            return Err(err(
+                "solver",
+                format!("unknown solver {other:?} (auto, enumerate, projection)"),
+            ))
+        }
+    };
+    if spec.output.every == 0 {
+        return Err(err("output.every", "must be >= 1"));
+    }
+    let defaults = SimulationOptions::default();
+    let options = SimulationOptions {
+        stepping: SteppingOptions {
+            dt: spec.dt,
+            integrator,
+            locator,
+            ..defaults.stepping
+        },
+        stopping: StoppingOptions {
+            duration: spec.duration,
+            continue_until_fallen: spec.continue_until_fallen,
+            ..defaults.stopping
+        },
+        physics: PhysicsOptions {
+            model: ModelOptions {
+                n_impacts: spec.impacts,
+                solver,
+                ..ModelOptions::default()
+            },
+            friction: spec.friction.unwrap_or(defaults.physics.friction),
+            gravity: spec.gravity.unwrap_or(defaults.physics.gravity),
+            exact_velocity_terms: spec.exact_velocity_terms,
+        },
+        recording: Recording {
+            history_every: spec.output.history.then_some(spec.output.every),
+            events: true,
+        },
+        initial: InitialState {
+            angles: spec.initial_angles,
+        },
+    };
+    options.validate(&column).map_err(|e| match e {
+        crate::driver::DriverError::InvalidOption(v) => {
+            // The option's path without its group (`stepping.dt` → `dt`), as the scene names it.
+            let field = match v.field.split_once('.').map_or(v.field.as_str(), |(_, f)| f) {
+                "angles" => "initial_angles",
+                "history_every" => "output.every",
+                f => f,
+            };
+            err(field, format!("{}: {}", v.value, v.rule))
+        }
+        crate::driver::DriverError::Model(e) => {
+            let field = if e.kind == crate::ErrorKind::InvalidOptions {
+                "impacts"
+            } else {
+                "scene"
+            };
+            err(field, e)
+        }
+    })?;
+    Ok(Scene {
+        title: spec.title.unwrap_or_else(|| name.to_string()),
+        column,
+        excitation,
+        options,
+        output: spec.output,
+    })
+}
+
+fn excitation(spec: &ExcitationSpec, base: &Path) -> Result<Excitation, SceneError> {
+    let pulse = |p: Result<Pulse, crate::ground::excitation::ExcitationError>| {
+        p.and_then(Excitation::pulse)
+            .map_err(|e| err("excitation", e))
+    };
+    let positive = |field: &str, v: f64| {
+        if v.is_finite() && v > 0.0 {
+            Ok(())
+        } else {
+            Err(err(
+                &format!("excitation.{field}"),
+                format!("{v}: must be a finite number greater than zero"),
+            ))
+        }
+    };
+    let finite = |field: &str, v: f64| {
+        if v.is_finite() {
+            Ok(())
+        } else {
+            Err(err(
+                &format!("excitation.{field}"),
+                format!("{v}: must be finite"),
+            ))
+        }
+    };
+    match spec {
+        ExcitationSpec::None | ExcitationSpec::Record { .. } => {}
+        ExcitationSpec::HalfSine {
+            amplitude,
+            duration,
+        }
+        | ExcitationSpec::FullSine {
+            amplitude,
+            duration,
+        }
+        | ExcitationSpec::Rectangular {
+            amplitude,
+            duration,
+        }
+        | ExcitationSpec::Triangular {
+            amplitude,
+            duration,
+        }
+        | ExcitationSpec::HalfSines {
+            amplitude,
+            duration,
+            ..
+        } => {
+            finite("amplitude", *amplitude)?;
+            positive("duration", *duration)?;
+        }
+        ExcitationSpec::Ricker {
+            amplitude,
+            frequency,
+        } => {
+            finite("amplitude", *amplitude)?;
+            positive("frequency", *frequency)?;
+        }
+        ExcitationSpec::MavroeidisPapageorgiou {
+            amplitude,
+            frequency,
+            nu,
+            ..
+        } => {
+            finite("amplitude", *amplitude)?;
+            positive("frequency", *frequency)?;
+            finite("nu", *nu)?;
+        }
+    }
+    if let ExcitationSpec::HalfSines { count: 0, .. } = spec {
+        return Err(err("excitation.count", "0: must be >= 1"));
+    }
+    match spec {
+        ExcitationSpec::None => Ok(Excitation::None),
+        ExcitationSpec::HalfSine {
+            amplitude,
+            duration,
+        } => pulse(Pulse::half_sine(*amplitude, *duration)),
+        ExcitationSpec::FullSine {
+            amplitude,
+            duration,
+        } => pulse(Pulse::full_sine(*amplitude, 0.5 * duration)),
+        ExcitationSpec::HalfSines {
+            amplitude,
+            duration,
+            count,
+        } => pulse(Pulse::half_sines(*amplitude, *duration, *count)),
+        ExcitationSpec::Rectangular {
+            amplitude,
+            duration,
+        } => pulse(Pulse::rectangular(*amplitude, *duration)),
+        ExcitationSpec::Triangular {
+            amplitude,
+            duration,
+        } => pulse(Pulse::triangular(*amplitude, *duration)),
+        ExcitationSpec::Ricker {
+            amplitude,
+            frequency,
+        } => pulse(Pulse::ricker(*amplitude, *frequency)),
+        ExcitationSpec::MavroeidisPapageorgiou {
+            amplitude,
+            frequency,
+            gamma,
+            nu,
+        } => pulse(Pulse::mavroeidis_papageorgiou(
+            *amplitude, *frequency, *gamma, *nu,
+        )),
+        ExcitationSpec::Record {
+            path,
+            scale_to_pga,
+            dt,
+            units,
+        } => {
+            let full = if path.is_absolute() {
+                path.clone()
+            } else {
+                base.join(path)
+            };
+            let mut format = PlainFormat {
+                dt: *dt,
+                ..PlainFormat::default()
+            };
+            match units.as_deref() {
+                None | Some("m/s2") | Some("m/s^2") => {}
+                Some("g") => format = format.in_g(),
+                Some(other) => {
+                    return Err(err(
+                        "excitation.units",
+                        format!("unknown units {other:?} (m/s2, g)"),
+                    ))
+                }
+            }
+            let mut record =
+                records::read_record(&full, &format).map_err(|e| err("excitation.path", e))?;
+            if let Some(target) = scale_to_pga {
+                record = record
+                    .scaled_to_pga(*target)
+                    .map_err(|e| err("excitation.scale_to_pga", e))?;
+            }
+            Excitation::record(record).map_err(|e| err("excitation", e))
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse(text: &str) -> Result<Scene, SceneError> {
+        let spec: SceneSpec = serde_json::from_str(text).map_err(|e| SceneError(e.to_string()))?;
+        build(spec, Path::new("."), "test")
+    }
+
+    const GOOD: &str = r#"{"blocks": [{"width": 0.2, "height": 1.0, "mass": 10}],
+        "excitation": {"type": "half_sine", "amplitude": 5.0, "duration": 0.3},
+        "duration": 1.0, "dt": 0.001}"#;
+
+    #[test]
+    fn a_good_scene_builds() {
+        let s = parse(GOOD).unwrap();
+        assert_eq!(s.column.n_interfaces(), 1);
+        assert_eq!(s.options.physics.model.n_impacts, 1);
+        assert!((s.excitation.peak() - 5.0).abs() < 1e-12);
+        for (name, integrator) in [
+            ("wilson", Integrator::default()),
+            ("newmark", Integrator::Newmark),
+            ("rk4", Integrator::Rk4),
+            ("dop853", Integrator::Dop853),
+        ] {
+            let text = GOOD.replace(
+                "\"duration\": 1.0,",
+                &format!(
+                    "\"duration\": 1.0, \"integrator\": \"{name}\", \"locator\": \"hermite\","
+                ),
+            );
+            let s = parse(&text).unwrap();
+            assert_eq!(s.options.stepping.integrator, integrator);
+            assert_eq!(s.options.stepping.locator, EventLocator::Hermite);
+        }
+    }
+
+    #[test]
+    fn errors_name_the_field() {
+        let cases = [
+            (GOOD.replace("\"dt\": 0.001", "\"dt\": -1"), "dt"),
+            (
+                GOOD.replace("\"dt\": 0.001", "\"dt\": 0.001, \"colour\": 1"),
+                "unknown field `colour`",
+            ),
+            (
+                GOOD.replace("\"mass\": 10", "\"mass\": 0"),
+                "blocks[0].mass",
+            ),
+            (
+                GOOD.replace("\"half_sine\"", "\"square\""),
+                "unknown variant `square`",
+            ),
+            (
+                GOOD.replace("\"duration\": 0.3", "\"duration\": 0.0"),
+                "excitation.duration",
+            ),
+            (
+                GOOD.replace("\"duration\": 1.0,", "\"duration\": 1.0, \"impacts\": 0,"),
+                "impacts",
+            ),
+            (
+                GOOD.replace(
+                    "\"duration\": 1.0,",
+                    "\"duration\": 1.0, \"integrator\": \"euler\",",
+                ),
+                "integrator",
+            ),
+            (
+                GOOD.replace(
+                    "\"duration\": 1.0,",
+                    "\"duration\": 1.0, \"initial_angles\": [0.1, 0.2],",
+                ),
+                "initial_angles",
+            ),
+            (
+                GOOD.replace("\"duration\": 1.0,", ""),
+                "missing field `duration`",
+            ),
+            ("{\"blocks\": [".to_string(), "EOF"),
+        ];
+        for (text, field) in cases {
+            let e = parse(&text)
+                .err()
+                .unwrap_or_else(|| panic!("accepted: {text}"));
+            assert!(e.0.contains(field), "{field}: {}", e.0);
+        }
+    }
+}
