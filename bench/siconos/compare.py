@@ -6,7 +6,8 @@ measured under the same load). Prints a Markdown table and writes `results.json`
     cargo build --release --example drum_column
     /usr/bin/python3 bench/siconos/compare.py [--quick]
 
-`--quick` runs the first 10 s of each record (the full cases take tens of minutes in Siconos).
+`--quick` runs the first 10 s of each record (the full cases take tens of minutes in Siconos);
+`--cases 0,2` runs only those rows of CASES.
 """
 
 import json
@@ -37,9 +38,12 @@ def run(cmd):
 
 def main():
     quick = "--quick" in sys.argv
+    cases = CASES
+    if "--cases" in sys.argv:
+        cases = [CASES[int(i)] for i in sys.argv[sys.argv.index("--cases") + 1].split(",")]
     dt = 1e-3
     rows = []
-    for n, w, h, rec, pga, mu in CASES:
+    for n, w, h, rec, pga, mu in cases:
         path = os.path.join(FAR, rec + ".AT2")
         args = ["--drums", str(n), "--width", str(w), "--height", str(h), "--record", path,
                 "--pga", str(pga), "--mu", str(mu), "--dt", str(dt)]

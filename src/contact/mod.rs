@@ -15,8 +15,13 @@
 //!   overlap of the two faces), gaps, slips and Jacobian rows.
 //! - [`friction`]: the contact problem of one step or one impact, joint by joint (Signorini at the
 //!   ends, Coulomb on the joint), solved exactly by an active set method on the block-tridiagonal
-//!   Delassus matrix, Lemke's algorithm ([`lemke`]) as the fallback.
+//!   Delassus matrix ([`active_set`]), Lemke's algorithm ([`lemke`]) and the nonsmooth
+//!   Gauss–Seidel iteration ([`fallback`]) as the fallbacks.
+//! - [`moreau`]: one time step; [`landing`]: impacts located inside it and the consecutive-impact
+//!   law; [`projection`]: the positions projected back onto the contacts.
+//! - [`simulation`]: a whole run: options, joint modes, events, stops, slips, energy.
 
+pub mod active_set;
 pub mod drums;
 pub mod fallback;
 pub mod friction;

@@ -215,7 +215,7 @@ pub fn run(args: &DrumsBenchArgs) -> Result<(), String> {
         ));
     }
     let drums = args.drums.clone().unwrap_or(drums);
-    if drums.iter().any(|&n| n == 0) {
+    if drums.contains(&0) {
         return Err("--drums: a column needs at least one drum".into());
     }
     let shapes = args.shapes.clone().unwrap_or(shapes);
