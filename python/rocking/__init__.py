@@ -10,6 +10,8 @@ left corner (``>= 0``, status +1); status 0 is closed (SPEC §1).
 - :func:`column_mass_matrix` (``M`` and ``q`` of a column of rectangular blocks),
   :func:`reduce` (``BᵀMB``, ``Bᵀp`` of an FE model, thesis Appendix C);
 - :func:`read_record`, :class:`Record` and the pulses (:func:`half_sine`, :func:`full_sine`, …);
+- :func:`simulate`: a scene (the CLI's schema) through the reference driver (thesis 3.3), with
+  the history as arrays, the events and the summary of ``rocking simulate``;
 - :class:`RockingError`, the one exception (a ``ValueError`` with the C ABI's status code);
 - :mod:`rocking.opensees`: the coupling with an openseespy model (needs ``openseespy``).
 
@@ -39,19 +41,14 @@ from ._rocking import (
     triangular,
 )
 
+from ._errors import error as _error
+from ._simulate import Simulation, simulate
+
 # Defaults, so that a RockingError raised from Python code has every attribute too.
 RockingError.code = None
 RockingError.name = None
 RockingError.message = None
 RockingError.detail = ""
-
-
-def _error(detail):
-    """A RockingError raised by the package's Python code (scenes, the OpenSees coupling): no C
-    code, ``detail`` names the field."""
-    e = RockingError(detail)
-    e.detail = detail
-    return e
 
 
 #: ``{C name: status code}`` of the C ABI (``ROCKING_OK`` = 0, ``ROCKING_ERR_*``): the values of
@@ -68,6 +65,7 @@ __all__ = [
     "Record",
     "Report",
     "RockingError",
+    "Simulation",
     "__version__",
     "check_configuration",
     "column_mass_matrix",
@@ -81,5 +79,6 @@ __all__ = [
     "rectangular",
     "reduce",
     "ricker",
+    "simulate",
     "triangular",
 ]

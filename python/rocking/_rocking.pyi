@@ -150,3 +150,13 @@ def _time_impact_model(
     repeats: int = 100000,
 ) -> float:
     """Benchmark hook: mean seconds per call of the library's impact model alone."""
+
+# ---- the driver (wrapped by rocking/_simulate.py; use rocking.simulate) ----
+
+def _simulate(
+    path: Optional[str] = None,
+    text: Optional[str] = None,
+    base: Optional[str] = None,
+    name: Optional[str] = None,
+    record: Optional[Record] = None,
+) -> Dict[str, Any]: ...

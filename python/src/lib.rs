@@ -10,7 +10,9 @@ mod arrays;
 mod column;
 mod errors;
 mod ground;
+mod json;
 mod models;
+mod simulate;
 
 use pyo3::prelude::*;
 
@@ -37,5 +39,7 @@ fn _rocking(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(ground::triangular, m)?)?;
     m.add_function(wrap_pyfunction!(ground::ricker, m)?)?;
     m.add_function(wrap_pyfunction!(ground::mavroeidis_papageorgiou, m)?)?;
+    // The driver: wrapped by the Python side (rocking/_simulate.py), which adds the result class.
+    m.add_function(wrap_pyfunction!(simulate::_simulate, m)?)?;
     Ok(())
 }
