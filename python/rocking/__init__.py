@@ -12,6 +12,9 @@ left corner (``>= 0``, status +1); status 0 is closed (SPEC §1).
 - :func:`read_record`, :class:`Record` and the pulses (:func:`half_sine`, :func:`full_sine`, …);
 - :func:`simulate`: a scene (the CLI's schema) through the reference driver (thesis 3.3), with
   the history as arrays, the events and the summary of ``rocking simulate``;
+- :func:`oas`, :func:`t1`, :func:`oc`: overturning spectra (thesis Chapter 5), parallel,
+  interruptible with Ctrl-C; :func:`design_width`, :func:`design_check`: the design method
+  (Eq. 31);
 - :class:`RockingError`, the one exception (a ``ValueError`` with the C ABI's status code);
 - :mod:`rocking.opensees`: the coupling with an openseespy model (needs ``openseespy``).
 
@@ -41,8 +44,10 @@ from ._rocking import (
     triangular,
 )
 
+from ._design import design_check, design_width
 from ._errors import error as _error
 from ._simulate import Simulation, simulate
+from ._spectra import Oas, Oc, oas, oc, t1
 
 # Defaults, so that a RockingError raised from Python code has every attribute too.
 RockingError.code = None
@@ -61,6 +66,8 @@ GRAVITY = 9.81
 __all__ = [
     "ERROR_CODES",
     "GRAVITY",
+    "Oas",
+    "Oc",
     "Pulse",
     "Record",
     "Report",
@@ -69,16 +76,21 @@ __all__ = [
     "__version__",
     "check_configuration",
     "column_mass_matrix",
+    "design_check",
+    "design_width",
     "full_sine",
     "half_sine",
     "half_sines",
     "impact_model",
     "mavroeidis_papageorgiou",
+    "oas",
+    "oc",
     "opening_model",
     "read_record",
     "rectangular",
     "reduce",
     "ricker",
     "simulate",
+    "t1",
     "triangular",
 ]
