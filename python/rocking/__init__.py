@@ -15,6 +15,7 @@ left corner (``>= 0``, status +1); status 0 is closed (SPEC §1).
 - :func:`oas`, :func:`t1`, :func:`oc`: overturning spectra (thesis Chapter 5), parallel,
   interruptible with Ctrl-C; :func:`design_width`, :func:`design_check`: the design method
   (Eq. 31);
+- :mod:`rocking.plot`: matplotlib plots of the results (needs ``matplotlib``);
 - :class:`RockingError`, the one exception (a ``ValueError`` with the C ABI's status code);
 - :mod:`rocking.opensees`: the coupling with an openseespy model (needs ``openseespy``).
 
@@ -44,6 +45,7 @@ from ._rocking import (
     triangular,
 )
 
+from . import plot
 from ._design import design_check, design_width
 from ._errors import error as _error
 from ._simulate import Simulation, simulate
@@ -86,6 +88,7 @@ __all__ = [
     "oas",
     "oc",
     "opening_model",
+    "plot",
     "read_record",
     "rectangular",
     "reduce",
