@@ -19,6 +19,13 @@ mod sweep;
 
 use pyo3::prelude::*;
 
+/// The allocator of the `rocking` CLI (cli/src/main.rs): the models allocate a few small vectors
+/// per event, and a sweep spends much of its time in glibc's allocator. It serves only this
+/// extension's Rust allocations (numpy arrays made from Rust vectors are freed by Rust too);
+/// Python's own memory is untouched.
+#[global_allocator]
+static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 #[pymodule]
 fn _rocking(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
