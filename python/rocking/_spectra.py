@@ -136,9 +136,22 @@ def _count(x):
     return int(x) if isinstance(x, numbers.Integral) else x
 
 
+def _numbers(**args):
+    """A TypeError naming the argument that is not a number (``None`` allowed for ``tail`` and
+    ``threads``): the extension's own message names it on some Python versions only."""
+    for name, v in args.items():
+        if v is None and name in ("tail", "threads"):
+            continue
+        integral = name in ("blocks", "impacts", "threads")
+        kind = numbers.Integral if integral else numbers.Real
+        if isinstance(v, bool) or not isinstance(v, kind):
+            raise TypeError(f"{name}: expected {'an integer' if integral else 'a number'}, got {type(v).__name__}")
+
+
 def _grid_args(slenderness, levels, level_max, sizes, size_min, size_max, blocks, bisection, impacts, dt_factor,
                tail, hermite, rk4, full_runs, threads, progress):
-    # Numbers go to the extension as given: its argument parsing names a bad one.
+    _numbers(slenderness=slenderness, level_max=level_max, size_min=size_min, size_max=size_max, blocks=blocks,
+             impacts=impacts, dt_factor=dt_factor, tail=tail, threads=threads)
     return (slenderness, _count(levels), level_max, _count(sizes), size_min, size_max, blocks, bool(bisection),
             impacts, dt_factor, tail, bool(hermite), bool(rk4), bool(full_runs), threads, progress)
 
@@ -203,6 +216,8 @@ def oc(shape="half-sine", *, blocks=1, slenderness=12.0, size=1.0, ptp=40, ptp_m
     {simulation}
 
     Returns an :class:`Oc`."""
+    _numbers(blocks=blocks, slenderness=slenderness, size=size, ptp_min=ptp_min, ptp_max=ptp_max, level_max=level_max,
+             impacts=impacts, dt_factor=dt_factor, tail=tail, threads=threads)
     return Oc(_rocking._oc(shape, blocks, slenderness, size, _count(ptp), ptp_min, ptp_max, _count(levels), level_max,
                            impacts, dt_factor, tail, bool(hermite), bool(rk4), bool(full_runs), threads, progress))
 

@@ -193,3 +193,18 @@ def test_progress_reaches_the_total(root):
     rocking.oc(ptp=6, levels=4, progress=lambda d, n: seen.append((d, n)))
     assert seen[-1] == (6, 6) and all(n == 6 for _, n in seen)
     assert [d for d, _ in seen] == sorted(d for d, _ in seen)
+
+
+@pytest.mark.parametrize(
+    "call, field",
+    [
+        (lambda r: rocking.oas(r, levels=2, sizes=2, level_max="10"), "level_max"),
+        (lambda r: rocking.oas(r, levels=2, sizes=2, blocks=1.5), "blocks"),
+        (lambda r: rocking.t1(r, levels=2, sizes=2, tail="long"), "tail"),
+        (lambda r: rocking.oc(ptp=2, levels=2, size=None), "size"),
+        (lambda r: rocking.oc(ptp=2, levels=2, threads=True), "threads"),
+    ],
+)
+def test_type_errors_name_the_argument(root, call, field):
+    with pytest.raises(TypeError, match=field):
+        call(root / RECORD)
