@@ -8,12 +8,16 @@ from ._errors import error
 
 def _broadcast(**arrays):
     """The arguments broadcast together (numpy's rules), flattened, and their common shape."""
+    values = []
+    for name, v in arrays.items():
+        try:
+            values.append(np.asarray(v, dtype=float))
+        except (TypeError, ValueError) as e:
+            raise TypeError(f"{name}: expected a number or an array of numbers ({e})") from None
     try:
-        b = np.broadcast_arrays(*[np.asarray(v, dtype=float) for v in arrays.values()])
+        b = np.broadcast_arrays(*values)
     except ValueError as e:
         raise error(f"{', '.join(arrays)}: shapes do not broadcast together ({e})") from None
-    except TypeError as e:
-        raise TypeError(f"{', '.join(arrays)}: expected numbers or arrays of numbers ({e})") from None
     shape = b[0].shape if b else ()
     return [np.ascontiguousarray(x).ravel().tolist() for x in b], shape
 

@@ -208,3 +208,10 @@ def test_progress_reaches_the_total(root):
 def test_type_errors_name_the_argument(root, call, field):
     with pytest.raises(TypeError, match=field):
         call(root / RECORD)
+
+
+def test_design_type_errors_name_the_argument():
+    with pytest.raises(TypeError, match="^height"):
+        rocking.design_width("tall", 3.0, 0.25)
+    with pytest.raises(TypeError, match="^t1"):
+        rocking.design_check(1.5, 10.0, 3.0, [0.25, None, "x"])
