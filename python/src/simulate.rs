@@ -54,6 +54,15 @@ pub fn _simulate<'py>(
         }
         _ => return Err(value_error("give either a scene path or its JSON text")),
     };
+    // The contact scheme (joints that slide or fly, `rocking simulate`'s drums) has other
+    // outputs; until the package exposes them, refuse rather than run the rigid driver instead.
+    if scene.contact.is_some() {
+        return Err(value_error(
+            "scheme: scenes whose joints slide or fly (scheme \"moreau\", or on_sliding / on_tension) \
+             run the contact scheme, \
+             which rocking.simulate does not support yet (use `rocking simulate`)",
+        ));
+    }
     if let Some(r) = record {
         scene.excitation = Excitation::record(r.inner.clone())
             .map_err(|e| value_error(format!("excitation: {e}")))?;

@@ -178,3 +178,13 @@ def test_missing_fields_files_and_types(root, tmp_path):
         rocking.simulate(42)
     with pytest.raises(TypeError, match="scene"):
         rocking.simulate({"blocks": object()})
+
+
+def test_a_contact_scheme_scene_is_refused_not_run_rigidly(root):
+    """A scene whose joints slide or fly runs the contact scheme in the CLI; rocking.simulate does
+    not support it yet and must say so rather than run the rigid driver."""
+    path = root / "examples/scenes/drums_sliding_column.json"
+    if not path.exists():
+        pytest.skip("no contact-scheme scene in this checkout")
+    with pytest.raises(rocking.RockingError, match="contact scheme"):
+        rocking.simulate(path)
