@@ -154,6 +154,9 @@ pub enum LoopError {
     Model(RockingError),
     /// The constrained equations were singular at time `t`.
     Singular(f64),
+    /// Events without time advancing (100 in a row) at time `t`: the located closures and the
+    /// models' choices chatter (a joint the impact or opening model opens recloses at once).
+    Stalled(f64),
 }
 
 impl std::fmt::Display for LoopError {
@@ -164,6 +167,7 @@ impl std::fmt::Display for LoopError {
             LoopError::Singular(t) => {
                 write!(f, "the constrained equations are singular at t = {t} s")
             }
+            LoopError::Stalled(t) => write!(f, "events without progress at t = {t} s"),
         }
     }
 }
@@ -314,6 +318,19 @@ impl<'a> Runner<'a> {
             &mut acc,
             &self.options.model,
         )?;
+        // A joint the model opens with zero acceleration (to round-off) at zero angle and rate
+        // does not move: it stays closed (else it chatters back through zero at once).
+        let scale = acc.iter().fold(0.0, |m: f64, a| m.max(a.abs()));
+        let n = statuses.len();
+        for k in 0..n {
+            if let Some(d) = statuses[k].dof(k, n) {
+                let at_zero = s.phi[d] == 0.0 && s.rates[d] == 0.0 && !s.statuses[k].is_open();
+                if at_zero && acc[d].abs() <= 1e-12 * scale {
+                    statuses[k] = Status::Closed;
+                    acc[d] = 0.0;
+                }
+            }
+        }
         let moving = s.rates.iter().any(|&r| r != 0.0);
         let moves = acc.iter().any(|&a| a != 0.0);
         // From rest: adopt what the model chose when it moves something; while moving: adopt a
@@ -351,6 +368,7 @@ impl<'a> Runner<'a> {
         let mut s = start;
         let t_end = opts.duration;
         let mut steps = 0usize;
+        let (mut last_event_time, mut stalled) = (f64::NAN, 0usize);
         self.max_kinetic = self.kinetic(&s);
         if opts.record_every > 0 {
             self.out.history.push((s.time, s.phi.clone()));
@@ -427,6 +445,14 @@ impl<'a> Runner<'a> {
                 }
                 self.out.max_closure_residual =
                     self.out.max_closure_residual.max(self.residual(&s.phi));
+                if s.time == last_event_time {
+                    stalled += 1;
+                    if stalled >= 100 {
+                        return Err(LoopError::Stalled(s.time));
+                    }
+                } else {
+                    (last_event_time, stalled) = (s.time, 0);
+                }
                 let before = self.kinetic(&s);
                 self.max_kinetic = self.max_kinetic.max(before);
                 let pose = self.chain.pose(&s.phi);
