@@ -57,6 +57,7 @@
 //! traits of `chain.rs`; neither touches the integrators.
 
 mod chain;
+pub mod closed;
 mod dop853;
 mod dynamics;
 mod events;
@@ -72,6 +73,7 @@ mod step;
 #[cfg(test)]
 mod tests;
 
+pub use closed::{simulate_loop, LoopOptions, LoopOutcome, LoopState};
 pub(crate) use options::RunOptions;
 pub use options::{
     EventLocator, InitialState, Integrator, PhysicsOptions, Recording, Scheme, SimulationOptions,
