@@ -192,7 +192,8 @@ def t1(records, *, slenderness=12.0, levels=80, level_max=10.0, sizes=120, size_
     ``records``: a :class:`rocking.Record` or a path: returns one dict (``record``, ``t1``,
     ``t1_prime``, ``beta``, ``f_min``, ``level_at_f_min``, ``size_at_f_min``, ``simulations``,
     ``seconds``, ``file`` (the path; None for a Record), ``slenderness``, ``blocks``,
-    ``dt_factor``, ``search``); a list of them: a list of dicts, in order."""
+    ``dt_factor``, ``search``, ``t_p`` — the replacement sine duration of Eq. 25); a list of them:
+    a list of dicts, in order."""
     single = not isinstance(records, (list, tuple))
     items = [records] if single else list(records)
     items = [os.fspath(r) if isinstance(r, os.PathLike) else r for r in items]

@@ -13,6 +13,7 @@ use pyo3::types::PyInt;
 use rocking::driver::{EventLocator, Integrator};
 use rocking::ground::records::{self, PlainFormat, Record as CoreRecord};
 use rocking::model::single_block::EquivalentBlock;
+use rocking::spectra::report::{OasReport, SummaryReport, T1Row};
 use rocking::spectra::{
     self, column_of_size, linear_levels, log_sizes, Oas, OasLevel, OasOptions, Oc, PulseShape,
     SizeSearch, SpectraError, SweepOptions,
@@ -162,124 +163,6 @@ fn compute_oas(
     Ok(whole)
 }
 
-/// `oas --json` (cli/src/commands/oas.rs): one level, with the largest unsafe size, its `p` and
-/// `f = p · level`.
-#[derive(Serialize)]
-struct Level {
-    #[serde(flatten)]
-    level: OasLevel,
-    size: Option<f64>,
-    p: Option<f64>,
-    f: Option<f64>,
-}
-
-/// The summary of an OAS, also a row of `t1 --json`.
-#[derive(Serialize)]
-struct Summary {
-    record: String,
-    t1: Option<f64>,
-    t1_prime: Option<f64>,
-    beta: Option<f64>,
-    f_min: Option<f64>,
-    level_at_f_min: Option<f64>,
-    size_at_f_min: Option<f64>,
-    simulations: usize,
-    seconds: f64,
-}
-
-impl Summary {
-    fn of(o: &Oas, seconds: f64) -> Summary {
-        let s = o.summary();
-        Summary {
-            record: o.record.clone(),
-            t1: s.t1,
-            t1_prime: s.fit.map(|f| f.t1_prime),
-            beta: s.fit.map(|f| f.beta),
-            f_min: s.f_min.map(|m| m.f),
-            level_at_f_min: s.f_min.map(|m| m.level),
-            size_at_f_min: s.f_min.map(|m| m.size),
-            simulations: s.simulations,
-            seconds,
-        }
-    }
-}
-
-/// How many boundary points each simplified spectrum predicts safe although they overturn.
-#[derive(Serialize)]
-struct Conservative {
-    eq21: usize,
-    eq21_approx: usize,
-    eq29: usize,
-    eq30: usize,
-}
-
-/// `oas --json`.
-#[derive(Serialize)]
-struct OasJson {
-    record: String,
-    slenderness: f64,
-    blocks: usize,
-    impacts: u32,
-    search: SizeSearch,
-    gravity: f64,
-    sizes: Vec<f64>,
-    levels: Vec<Level>,
-    summary: Summary,
-    conservative: Option<Conservative>,
-}
-
-impl OasJson {
-    fn of(o: &Oas, seconds: f64) -> OasJson {
-        let levels = o
-            .levels
-            .iter()
-            .map(|l| {
-                let size = l.largest_unsafe.map(|i| o.sizes[i]);
-                let p = size.map(|r| o.block(r).frequency_parameter(o.gravity));
-                Level {
-                    level: *l,
-                    size,
-                    p,
-                    f: p.map(|p| p * l.level),
-                }
-            })
-            .collect();
-        let s = o.summary();
-        OasJson {
-            record: o.record.clone(),
-            slenderness: o.slenderness,
-            blocks: o.n_blocks,
-            impacts: o.n_impacts,
-            search: o.search,
-            gravity: o.gravity,
-            sizes: o.sizes.clone(),
-            levels,
-            summary: Summary::of(o, seconds),
-            conservative: s.t1.map(|t1| {
-                let c = o.check(t1, s.fit);
-                Conservative {
-                    eq21: c.eq21.len(),
-                    eq21_approx: c.eq21_approx.len(),
-                    eq29: c.eq29.len(),
-                    eq30: c.eq30.len(),
-                }
-            }),
-        }
-    }
-}
-
-/// One record's row of `t1 --json`: the summary of its OAS and the settings.
-#[derive(Serialize)]
-struct T1Row {
-    #[serde(flatten)]
-    summary: Summary,
-    file: Option<String>,
-    slenderness: f64,
-    blocks: usize,
-    dt_factor: f64,
-    search: SizeSearch,
-}
-
 /// The OAS of a record: `(oas --json as a dict, i_cr)`; `i_cr` (Eq. 18) of the slenderness for
 /// the simplified spectra of the plots.
 #[pyfunction]
@@ -330,7 +213,7 @@ pub fn _oas<'py>(
     let result = compute_oas(py, &record, &o, &runner)?;
     let seconds = t0.elapsed().as_secs_f64();
     Ok((
-        to_python(py, &OasJson::of(&result, seconds))?,
+        to_python(py, &OasReport::of(&result, seconds))?,
         result.i_cr(),
     ))
 }
@@ -385,12 +268,14 @@ pub fn _t1<'py>(
         let t0 = Instant::now();
         let result = compute_oas(py, &record, &o, &runner)?;
         rows.push(T1Row {
-            summary: Summary::of(&result, t0.elapsed().as_secs_f64()),
+            summary: SummaryReport::of(&result, t0.elapsed().as_secs_f64()),
             file,
             slenderness: o.slenderness,
             blocks: o.n_blocks,
             dt_factor,
             search: o.search,
+            t_p: spectra::replacement_sine(&record).map(|s| s.t_p),
+            procedure: None,
         });
     }
     to_python(py, &rows)

@@ -33,6 +33,8 @@ mod oas;
 mod overturning_curve;
 mod point;
 mod replacement_sine;
+#[cfg(feature = "serde")]
+pub mod report;
 pub mod statistics;
 mod sweep;
 mod time_step;

@@ -6,10 +6,10 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use clap::Args;
-use rocking::spectra::{self, statistics, SizeSearch};
+use rocking::spectra::report::{SummaryReport as Summary, T1Row};
+use rocking::spectra::{self, statistics};
 use serde::{Deserialize, Serialize};
 
-use super::oas::Summary;
 use super::sweep::{OasGridArgs, Procedure, Shard, SimulationArgs};
 use crate::output::{print_json, read_json};
 use crate::plot::{Chart, Series, Style, COLORS};
@@ -49,25 +49,33 @@ pub struct T1Args {
     pub png: bool,
 }
 
-/// One record's row of `t1 --json`: the summary of its OAS and the settings.
+/// One record's row of `t1 --json`: the library's row and, with `--explain`, the run of the
+/// governing point.
 #[derive(Serialize, Deserialize)]
 struct Row {
     #[serde(flatten)]
-    summary: Summary,
-    file: String,
-    slenderness: f64,
-    blocks: usize,
-    dt_factor: f64,
-    search: SizeSearch,
-    /// Replacement sine duration t_p = I_max / (F a_max) of the record [s] (Eq. 25).
-    #[serde(default)]
-    t_p: Option<f64>,
-    /// `--procedure`, when not the default.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    procedure: Option<String>,
+    row: T1Row,
     /// With --explain: the run of the governing point.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     governing: Option<Governing>,
+}
+
+impl std::ops::Deref for Row {
+    type Target = T1Row;
+    fn deref(&self) -> &T1Row {
+        &self.row
+    }
+}
+
+impl std::ops::DerefMut for Row {
+    fn deref_mut(&mut self) -> &mut T1Row {
+        &mut self.row
+    }
+}
+
+/// The file of a row (rows of `rocking t1` always have one).
+fn file_of(r: &T1Row) -> &str {
+    r.file.as_deref().unwrap_or("")
 }
 
 /// How the run of the governing point ended (`--explain`); times are record times [s].
@@ -124,15 +132,17 @@ pub fn run(a: &T1Args) -> Result<(), String> {
                 None
             };
             rows.push(Row {
-                summary,
-                file: f.display().to_string(),
-                slenderness: o.slenderness,
-                blocks: o.n_blocks,
-                dt_factor: a.simulation.dt_factor,
-                search: o.search,
-                t_p,
-                procedure: (a.grid.procedure != Procedure::Converged)
-                    .then(|| a.grid.procedure.name()),
+                row: T1Row {
+                    summary,
+                    file: Some(f.display().to_string()),
+                    slenderness: o.slenderness,
+                    blocks: o.n_blocks,
+                    dt_factor: a.simulation.dt_factor,
+                    search: o.search,
+                    t_p,
+                    procedure: (a.grid.procedure != Procedure::Converged)
+                        .then(|| a.grid.procedure.name()),
+                },
                 governing,
             });
         }
@@ -145,7 +155,7 @@ pub fn run(a: &T1Args) -> Result<(), String> {
         }
         // Rows written before t_p was part of the output: t_p from the record, when readable.
         for r in rows.iter_mut().filter(|r| r.t_p.is_none()) {
-            if let Ok(record) = super::sweep::read(std::path::Path::new(&r.file)) {
+            if let Ok(record) = super::sweep::read(std::path::Path::new(file_of(r))) {
                 r.t_p = spectra::replacement_sine(&record).map(|s| s.t_p);
             }
         }
@@ -162,18 +172,18 @@ pub fn run(a: &T1Args) -> Result<(), String> {
                     return Err(format!(
                         "--explain: {} was computed with other options (dt factor {}, \
                          slenderness {}, blocks {}, procedure {}): pass the same",
-                        r.file,
+                        file_of(r),
                         r.dt_factor,
                         r.slenderness,
                         r.blocks,
                         r.procedure.as_deref().unwrap_or("converged")
                     ));
                 }
-                let record = super::sweep::read(std::path::Path::new(&r.file))?;
+                let record = super::sweep::read(std::path::Path::new(file_of(r)))?;
                 r.governing = governing(&record, &r.summary, &o)?;
             }
         }
-        rows.sort_by(|x, y| x.file.cmp(&y.file));
+        rows.sort_by(|x, y| file_of(x).cmp(file_of(y)));
         rows
     };
     if a.json {
