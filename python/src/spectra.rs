@@ -13,13 +13,12 @@ use pyo3::types::PyInt;
 use rocking::driver::{EventLocator, Integrator};
 use rocking::ground::records::{self, PlainFormat, Record as CoreRecord};
 use rocking::model::single_block::EquivalentBlock;
-use rocking::spectra::report::{OasReport, SummaryReport, T1Row};
+use rocking::spectra::report::{OasReport, OcReport, SummaryReport, T1Row};
 use rocking::spectra::{
     self, column_of_size, linear_levels, log_sizes, Oas, OasLevel, OasOptions, Oc, PulseShape,
     SizeSearch, SpectraError, SweepOptions,
 };
 use rocking::validate;
-use serde::Serialize;
 
 use crate::arrays::any_vector;
 use crate::errors::value_error;
@@ -299,35 +298,6 @@ fn shape_of(name: &str) -> PyResult<PulseShape> {
     })
 }
 
-/// One grid point of `oc --json`.
-#[derive(Serialize)]
-struct Point {
-    t_p: f64,
-    a_p: f64,
-    p_tp: f64,
-    level: f64,
-    #[serde(rename = "unsafe")]
-    overturns: bool,
-}
-
-/// One point of the envelope: the lowest unsafe level at `p t_p` (`None`: none).
-#[derive(Serialize)]
-struct EnvelopePoint {
-    p_tp: f64,
-    level: Option<f64>,
-}
-
-/// `oc --json`.
-#[derive(Serialize)]
-struct OcJson {
-    shape: String,
-    blocks: usize,
-    p: f64,
-    a_p_min: f64,
-    points: Vec<Point>,
-    envelope: Vec<EnvelopePoint>,
-}
-
 /// The overturning curve of a pulse shape (`rocking oc`): `oc --json` as a dict.
 #[pyfunction]
 #[pyo3(signature = (shape, blocks, slenderness, size, ptp, ptp_min, ptp_max, levels, level_max, impacts, dt_factor, tail, hermite, rk4, full_runs, threads, progress))]
@@ -395,37 +365,9 @@ pub fn _oc<'py>(
     for row in rows {
         res.overturned.extend(row.map_err(spectra_error)?);
     }
-    let points = res
-        .normalised()
-        .iter()
-        .zip(
-            res.t_p
-                .iter()
-                .flat_map(|t| a_p.iter().map(move |ap| (*t, *ap))),
-        )
-        .map(|(&(p_tp, level, overturns), (t_p, a_p))| Point {
-            t_p,
-            a_p,
-            p_tp,
-            level,
-            overturns,
-        })
-        .collect();
-    let envelope = res
-        .normalised_envelope()
-        .iter()
-        .map(|&(p_tp, level)| EnvelopePoint { p_tp, level })
-        .collect();
     to_python(
         py,
-        &OcJson {
-            shape: shape.name(),
-            blocks: n_blocks,
-            p: mono_p,
-            a_p_min: mono_a_p_min,
-            points,
-            envelope,
-        },
+        &OcReport::of(&res, &a_p, n_blocks, mono_p, mono_a_p_min),
     )
 }
 

@@ -4,7 +4,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::{Oas, OasLevel, SizeSearch};
+use super::{Oas, OasLevel, Oc, SizeSearch};
 
 /// One level of an OAS: the library's level and, when a size overturns, the largest unsafe one
 /// with its `p` and `f = p · level`.
@@ -154,4 +154,70 @@ pub struct T1Row {
     /// The t₁ procedure, when not the default (`converged`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub procedure: Option<String>,
+}
+
+/// One grid point of an overturning curve.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct OcPointReport {
+    pub t_p: f64,
+    pub a_p: f64,
+    pub p_tp: f64,
+    pub level: f64,
+    #[serde(rename = "unsafe")]
+    pub overturns: bool,
+}
+
+/// One point of the envelope: the lowest unsafe level at `p t_p` (`None`: none).
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct EnvelopePointReport {
+    pub p_tp: f64,
+    pub level: Option<f64>,
+}
+
+/// An overturning curve (`rocking oc --json`): every grid point, normalised by the equivalent
+/// monolith's `p` and `a_p,min`, and the envelope.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct OcReport {
+    pub shape: String,
+    pub blocks: usize,
+    pub p: f64,
+    pub a_p_min: f64,
+    pub points: Vec<OcPointReport>,
+    pub envelope: Vec<EnvelopePointReport>,
+}
+
+impl OcReport {
+    /// The report of `oc` computed at the accelerations `a_p` for a column of `blocks` blocks
+    /// whose equivalent monolith has `p` and `a_p_min`.
+    pub fn of(oc: &Oc, a_p: &[f64], blocks: usize, p: f64, a_p_min: f64) -> OcReport {
+        let points = oc
+            .normalised()
+            .iter()
+            .zip(
+                oc.t_p
+                    .iter()
+                    .flat_map(|t| a_p.iter().map(move |ap| (*t, *ap))),
+            )
+            .map(|(&(p_tp, level, overturns), (t_p, a_p))| OcPointReport {
+                t_p,
+                a_p,
+                p_tp,
+                level,
+                overturns,
+            })
+            .collect();
+        let envelope = oc
+            .normalised_envelope()
+            .iter()
+            .map(|&(p_tp, level)| EnvelopePointReport { p_tp, level })
+            .collect();
+        OcReport {
+            shape: oc.shape.name(),
+            blocks,
+            p,
+            a_p_min,
+            points,
+            envelope,
+        }
+    }
 }
