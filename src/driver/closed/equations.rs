@@ -140,7 +140,7 @@ impl<'a> LoopEquations<'a> {
 
 /// Solves the dense `a x = b` in place (`b` becomes `x`) by Gaussian elimination with partial
 /// pivoting; `false` if a pivot is zero or the result is not finite.
-fn solve_in_place(a: &mut [f64], b: &mut [f64]) -> bool {
+pub(super) fn solve_in_place(a: &mut [f64], b: &mut [f64]) -> bool {
     let n = b.len();
     for col in 0..n {
         let Some(piv) =

@@ -8,177 +8,58 @@
 //!   starts to move when it returns a non-zero acceleration, in the configuration it chose;
 //! - **moving**: the open DOFs are integrated by RK4 with the closure at acceleration level
 //!   ([`LoopEquations`]: `[M_FF G_Fᵀ; G_F 0][a; μ] = [q_F + f_F; −Ġ v]`, exact velocity terms).
-//!   Positions are not projected: the closure residual (the last body's gap to its support, the
-//!   angle times the chain's reach) is measured after every step and reported
-//!   ([`LoopOutcome::max_closure_residual`]); with RK4 it stays at the truncation error;
+//!   After every step the open DOFs are projected back onto the closure (positions onto
+//!   `G(q) = 0` by Newton steps in the kinetic metric, rates onto `G v = 0`;
+//!   [`project_positions`], [`project_rates`]); the closure residual (the last body's gap to its
+//!   support, the angle times the chain's reach) is reported before the projection
+//!   ([`LoopOutcome::max_step_drift`]) and after it ([`LoopOutcome::max_closure_residual`]);
 //! - **closing**: an open DOF whose depth (`|φ|` on the admissible side) reaches zero inside a
 //!   step. The instant is located by linear interpolation on the first DOF to cross; every open
 //!   joint whose DOF crosses zero within the same step is flagged as closing (a four-hinge loop
 //!   closes its four hinges together; resolution: one step), the state is moved there by linear
-//!   interpolation, the closing angles set to zero, and the constrained impact model chooses the
-//!   configuration and rates after;
+//!   interpolation, the closing angles set to zero (the rest projected back onto the closure),
+//!   and the constrained impact model chooses the configuration and rates after;
+//! - **locking a chattering joint**: a joint flipping between its faces at a vanishing rate
+//!   (a Zeno sequence of impacts, each losing almost nothing) cannot be resolved by a fixed step.
+//!   When the impact keeps more than `1 − lock_loss` of the kinetic energy and every closing
+//!   joint's rate is below `lock_rate` (default `g dt / L`, `L` the chain's reach: the rate
+//!   gravity gives in one step at the chain's size, below which a rebound about the other corner
+//!   would last about one step), the closing joints are locked instead — closed, their rates
+//!   removed by the kinetic-metric projection together with the closure (the limit of such a
+//!   Zeno sequence is sustained contact; SPEC §5's settling of a column does the same). The
+//!   opening model, asked after the next step, reopens them if the loads call for it;
 //! - **opening while moving**: after every accepted step the opening model is asked with the
 //!   current configuration; if it prefers another (a new hinge), the new joints open at zero
 //!   angle;
 //! - **settling**: when the kinetic energy after an impact falls below
 //!   [`LoopOptions::settle_ratio`] times the largest kinetic energy of the run, the rates are
 //!   set to zero (at rest; the closing joints are then closed);
-//! - **collapse**: the mechanism passes its point of no return — the potential energy along the
-//!   motion passes its maximum while the hinges keep opening: the power of gravity on the open
-//!   DOFs turns positive while the total hinge depth grows (for a one-DOF mechanism exactly the
-//!   maximum of `V` along the mechanism, after which gravity alone drives it down); or, as a
-//!   safeguard, a hinge angle beyond [`LoopOptions::collapse_angle`].
+//! - **collapse**: the mechanism has passed its point of no return. (a) For any mechanism: the
+//!   potential energy of the weight below the closed loop's, `V < V₀` (beyond the slack the
+//!   closure residual allows). A loop stable under its self-weight (thicker than the minimum,
+//!   the opening model returns zero at `a_g = 0`) has its closed configuration as a strict local
+//!   minimum of `V` over the admissible mechanisms: every path from it climbs, so a pose with
+//!   `V < V₀` lies beyond the barrier. (b) For a one-DOF mechanism (four open joints), already
+//!   at the maximum of `V` along it: gravity's power turns positive while the hinges open
+//!   (DeJong's four-hinge criterion, the analogue of a column's centre passing its pivot). With
+//!   more DOFs, gravity's power on some of them says nothing about the whole, so (a) alone
+//!   decides. (c) Safeguard: a hinge angle beyond [`LoopOptions::collapse_angle`].
 //!
 //! This driver does not yet go through the column's pipeline (`run.rs` with the
 //! `ChainDynamics` traits of `chain.rs`); see `docs/arches.md`.
 
 mod equations;
+mod projection;
+mod state;
 
 pub use equations::LoopEquations;
+pub use projection::{project_positions, project_rates};
+pub use state::{LoopError, LoopEvent, LoopEventKind, LoopOptions, LoopOutcome, LoopState};
 
 use crate::chain::Chain;
-use crate::error::RockingError;
 use crate::ground::GroundMotion;
-use crate::model::cone::ModelOptions;
 use crate::model::configuration::Status;
 use crate::model::constrained::{impact_model_constrained, opening_model_constrained};
-
-/// Options of a loop's time history.
-#[derive(Clone, Debug)]
-pub struct LoopOptions {
-    /// Gravity (m/s², positive).
-    pub gravity: f64,
-    /// Time step (s).
-    pub dt: f64,
-    /// End of the run (s).
-    pub duration: f64,
-    /// The models' options.
-    pub model: ModelOptions,
-    /// Settled when the kinetic energy after an impact is below this share of the run's largest.
-    pub settle_ratio: f64,
-    /// Collapse safeguard: a hinge angle beyond this (rad).
-    pub collapse_angle: f64,
-    /// Ask the opening model every this many steps while moving (1: every step).
-    pub check_every: usize,
-    /// Record the state every this many steps (0: no history).
-    pub record_every: usize,
-}
-
-impl Default for LoopOptions {
-    fn default() -> LoopOptions {
-        LoopOptions {
-            gravity: crate::model::column::GRAVITY,
-            dt: 1e-3,
-            duration: 10.0,
-            model: ModelOptions::default(),
-            settle_ratio: 1e-6,
-            collapse_angle: std::f64::consts::FRAC_PI_4,
-            check_every: 1,
-            record_every: 0,
-        }
-    }
-}
-
-/// The state of a loop: time, DOF angles and rates (`2J`, SPEC §1 order), statuses (`J`).
-#[derive(Clone, Debug, PartialEq)]
-pub struct LoopState {
-    pub time: f64,
-    pub phi: Vec<f64>,
-    pub rates: Vec<f64>,
-    pub statuses: Vec<Status>,
-}
-
-impl LoopState {
-    /// The closed loop at rest at time 0.
-    pub fn at_rest(chain: &Chain) -> LoopState {
-        LoopState {
-            time: 0.0,
-            phi: vec![0.0; chain.n_dofs()],
-            rates: vec![0.0; chain.n_dofs()],
-            statuses: vec![Status::Closed; chain.n_joints()],
-        }
-    }
-
-    /// The open DOFs.
-    pub fn open_dofs(&self) -> Vec<usize> {
-        crate::model::configuration::open_dofs(&self.statuses)
-    }
-}
-
-/// What happened.
-#[derive(Clone, Debug, PartialEq)]
-pub enum LoopEventKind {
-    /// The opening model chose a new configuration (from rest, or a new hinge while moving).
-    Opening,
-    /// The flagged joints closed; the impact model chose the configuration after.
-    Closing {
-        joints: Vec<usize>,
-        kinetic_before: f64,
-        kinetic_after: f64,
-    },
-    /// The kinetic energy vanished: at rest.
-    Settled,
-    /// The mechanism passed its point of no return.
-    Collapsed,
-}
-
-/// An event, with the statuses after it (`-1`, `0`, `+1` per joint).
-#[derive(Clone, Debug, PartialEq)]
-pub struct LoopEvent {
-    pub time: f64,
-    pub kind: LoopEventKind,
-    pub statuses: Vec<i8>,
-}
-
-/// The result of a run.
-#[derive(Clone, Debug)]
-pub struct LoopOutcome {
-    pub events: Vec<LoopEvent>,
-    /// The state at the end (the collapse, or the duration).
-    pub state: LoopState,
-    pub collapsed: bool,
-    /// Largest `|φ|` of any DOF.
-    pub peak_angle: f64,
-    /// Largest closure residual after a step (m): `max(|gap|, |rotation| × reach)`.
-    pub max_closure_residual: f64,
-    /// `(t, φ)` samples every [`LoopOptions::record_every`] steps and at events.
-    pub history: Vec<(f64, Vec<f64>)>,
-}
-
-/// Errors of a loop run.
-#[derive(Clone, Debug)]
-pub enum LoopError {
-    /// Bad options (the field named).
-    Options(String),
-    /// A model failed.
-    Model(RockingError),
-    /// The constrained equations were singular at time `t`.
-    Singular(f64),
-    /// Events without time advancing (100 in a row) at time `t`: the located closures and the
-    /// models' choices chatter (a joint the impact or opening model opens recloses at once).
-    Stalled(f64),
-}
-
-impl std::fmt::Display for LoopError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self {
-            LoopError::Options(s) => write!(f, "invalid option: {s}"),
-            LoopError::Model(e) => write!(f, "{e}"),
-            LoopError::Singular(t) => {
-                write!(f, "the constrained equations are singular at t = {t} s")
-            }
-            LoopError::Stalled(t) => write!(f, "events without progress at t = {t} s"),
-        }
-    }
-}
-
-impl std::error::Error for LoopError {}
-
-impl From<RockingError> for LoopError {
-    fn from(e: RockingError) -> LoopError {
-        LoopError::Model(e)
-    }
-}
 
 fn codes(statuses: &[Status]) -> Vec<i8> {
     statuses.iter().map(|s| s.as_i8()).collect()
@@ -214,6 +95,14 @@ pub fn simulate_loop(
     if options.collapse_angle.is_nan() || options.collapse_angle <= 0.0 {
         return Err(bad("collapse_angle", options.collapse_angle));
     }
+    if !(0.0..1.0).contains(&options.lock_loss) {
+        return Err(bad("lock_loss", options.lock_loss));
+    }
+    if let Some(r) = options.lock_rate {
+        if !(r >= 0.0 && r.is_finite()) {
+            return Err(bad("lock_rate", r));
+        }
+    }
     if !chain.is_loop() {
         return Err(LoopError::Options("chain: not a loop".into()));
     }
@@ -236,6 +125,11 @@ struct Runner<'a> {
     equations: LoopEquations<'a>,
     /// Reach of the chain (m), to express the closure's rotation residual as a length.
     reach: f64,
+    /// Rate below which a grazing closing locks (rad/s).
+    lock_rate: f64,
+    /// Potential energy of the closed loop (J), and the round-off allowed below it.
+    closed_potential: f64,
+    potential_tolerance: f64,
     max_kinetic: f64,
     out: LoopOutcome,
 }
@@ -256,6 +150,11 @@ impl<'a> Runner<'a> {
             options,
             equations: LoopEquations::new(chain, options.gravity),
             reach,
+            lock_rate: options
+                .lock_rate
+                .unwrap_or(options.gravity * options.dt / reach),
+            closed_potential: 0.0,
+            potential_tolerance: 0.0,
             max_kinetic: 0.0,
             out: LoopOutcome {
                 events: Vec::new(),
@@ -263,6 +162,7 @@ impl<'a> Runner<'a> {
                 collapsed: false,
                 peak_angle: 0.0,
                 max_closure_residual: 0.0,
+                max_step_drift: 0.0,
                 history: Vec::new(),
             },
         }
@@ -348,12 +248,35 @@ impl<'a> Runner<'a> {
         r[1].hypot(r[2]).max(r[0].abs() * self.reach)
     }
 
-    /// Collapse: gravity's power on the open DOFs positive while the total hinge depth grows; or
-    /// a hinge angle beyond the safeguard.
-    fn collapsed(&self, s: &LoopState, open: &[usize]) -> bool {
+    /// Potential energy of the bodies' weight (J) in the pose of `phi`.
+    fn potential(&self, phi: &[f64]) -> f64 {
+        let pose = self.chain.pose(phi);
+        let bodies = self.chain.bodies();
+        self.options.gravity
+            * bodies
+                .iter()
+                .zip(&pose.centres)
+                .map(|(b, c)| b.mass * c[1])
+                .sum::<f64>()
+    }
+
+    /// Collapse (see the module's documentation): the potential energy below the closed loop's
+    /// (over the barrier, any mechanism); for a one-DOF mechanism (four open joints) already
+    /// past the maximum of `V` along it (gravity's power positive while the hinges open); or a
+    /// hinge angle beyond the safeguard.
+    fn collapsed(&self, s: &LoopState, open: &[usize], residual: f64) -> bool {
         let n = self.chain.n_joints();
         if s.phi.iter().any(|p| p.abs() > self.options.collapse_angle) {
             return true;
+        }
+        // A pose off the closure by `residual` misplaces the weight by about that much.
+        let slack =
+            self.potential_tolerance + self.options.gravity * self.chain.total_mass() * residual;
+        if self.potential(&s.phi) < self.closed_potential - slack {
+            return true;
+        }
+        if open.len() != 4 {
+            return false;
         }
         let pose = self.chain.pose(&s.phi);
         let gravity = self.chain.load_vector(&pose, 0.0, self.options.gravity);
@@ -367,6 +290,8 @@ impl<'a> Runner<'a> {
         let n = self.chain.n_joints();
         let mut s = start;
         let t_end = opts.duration;
+        self.closed_potential = self.potential(&vec![0.0; self.chain.n_dofs()]);
+        self.potential_tolerance = 1e-12 * opts.gravity * self.chain.total_mass() * self.reach;
         let mut steps = 0usize;
         let (mut last_event_time, mut stalled) = (f64::NAN, 0usize);
         self.max_kinetic = self.kinetic(&s);
@@ -443,8 +368,16 @@ impl<'a> Runner<'a> {
                         closing[open[i] % n] = true;
                     }
                 }
-                self.out.max_closure_residual =
-                    self.out.max_closure_residual.max(self.residual(&s.phi));
+                // The closing angles set to zero leave the interpolated state off the closure
+                // by the other DOFs' share of the step: back onto it with the rest.
+                let residual = if opts.project {
+                    let rest: Vec<usize> =
+                        open.iter().copied().filter(|&d| !closing[d % n]).collect();
+                    project_positions(self.chain, &rest, &mut s.phi, self.reach, 3)
+                } else {
+                    self.residual(&s.phi)
+                };
+                self.out.max_closure_residual = self.out.max_closure_residual.max(residual);
                 if s.time == last_event_time {
                     stalled += 1;
                     if stalled >= 100 {
@@ -455,6 +388,11 @@ impl<'a> Runner<'a> {
                 }
                 let before = self.kinetic(&s);
                 self.max_kinetic = self.max_kinetic.max(before);
+                let (statuses_before, rates_before) = (s.statuses.clone(), s.rates.clone());
+                let closing_rate = (0..n)
+                    .filter(|&k| closing[k])
+                    .map(|k| (s.rates[k] + s.rates[n + k]).abs())
+                    .fold(0.0, f64::max);
                 let pose = self.chain.pose(&s.phi);
                 let mass = self.chain.mass_matrix(&pose);
                 let g = self.chain.closure_matrix(&pose);
@@ -466,17 +404,41 @@ impl<'a> Runner<'a> {
                     &closing,
                     &opts.model,
                 )?;
-                let joints = (0..n).filter(|&k| closing[k]).collect();
-                self.event(
-                    &s,
-                    LoopEventKind::Closing {
-                        joints,
-                        kinetic_before: report.kinetic_before,
-                        kinetic_after: report.kinetic_after,
-                    },
-                );
+                let joints: Vec<usize> = (0..n).filter(|&k| closing[k]).collect();
+                let loss = report.kinetic_before - report.kinetic_after;
+                let mut kinetic_after = report.kinetic_after;
+                if loss <= opts.lock_loss * report.kinetic_before && closing_rate <= self.lock_rate
+                {
+                    // A chatter: lock the closing joints instead.
+                    s.statuses = statuses_before;
+                    s.rates = rates_before;
+                    for &k in &joints {
+                        s.statuses[k] = Status::Closed;
+                    }
+                    if !project_rates(self.chain, &pose, &s.open_dofs(), &mut s.rates) {
+                        return Err(LoopError::Singular(s.time));
+                    }
+                    kinetic_after = self.kinetic(&s);
+                    self.event(
+                        &s,
+                        LoopEventKind::Locked {
+                            joints,
+                            kinetic_before: report.kinetic_before,
+                            kinetic_after,
+                        },
+                    );
+                } else {
+                    self.event(
+                        &s,
+                        LoopEventKind::Closing {
+                            joints,
+                            kinetic_before: report.kinetic_before,
+                            kinetic_after,
+                        },
+                    );
+                }
                 let open_after = s.statuses.iter().filter(|st| st.is_open()).count();
-                if report.kinetic_after <= opts.settle_ratio * self.max_kinetic || open_after < 4 {
+                if kinetic_after <= opts.settle_ratio * self.max_kinetic || open_after < 4 {
                     s.rates.iter_mut().for_each(|r| *r = 0.0);
                     for k in 0..n {
                         if s.phi[k] == 0.0 && s.phi[n + k] == 0.0 {
@@ -493,8 +455,19 @@ impl<'a> Runner<'a> {
                 s.rates[open[i]] = v1[i];
             }
             steps += 1;
-            self.out.max_closure_residual =
-                self.out.max_closure_residual.max(self.residual(&s.phi));
+            let drift = self.residual(&s.phi);
+            self.out.max_step_drift = self.out.max_step_drift.max(drift);
+            let residual = if opts.project {
+                let r = project_positions(self.chain, &open, &mut s.phi, self.reach, 3);
+                let pose = self.chain.pose(&s.phi);
+                if !project_rates(self.chain, &pose, &open, &mut s.rates) {
+                    return Err(LoopError::Singular(s.time));
+                }
+                r
+            } else {
+                drift
+            };
+            self.out.max_closure_residual = self.out.max_closure_residual.max(residual);
             self.out.peak_angle = s
                 .phi
                 .iter()
@@ -503,7 +476,7 @@ impl<'a> Runner<'a> {
                 self.out.history.push((s.time, s.phi.clone()));
             }
             self.max_kinetic = self.max_kinetic.max(self.kinetic(&s));
-            if self.collapsed(&s, &open) {
+            if self.collapsed(&s, &open, residual) {
                 self.out.collapsed = true;
                 self.event(&s, LoopEventKind::Collapsed);
                 break;

@@ -1,0 +1,177 @@
+//! Keeping a loop closed (SPEC §9): the kinetic-metric projections of the rates onto the closure
+//! (`G v = 0`, with some joints locked) and of the positions onto the closure manifold
+//! (`G(q) = 0`: the last body back on its support).
+//!
+//! Both are the equality-constrained least-squares problem in the metric of the mass matrix on
+//! the open DOFs `F`: `min ½ (y − y⁻)ᵀ M_FF (y − y⁻)` subject to `A_F y = c`, solved by its KKT
+//! system `[M_FF A_Fᵀ; A_F 0][y; μ] = [M_FF y⁻; c]`. `M_FF` alone is singular in a loop (the
+//! cut joint moves no mass), but it is positive definite on the null space of `A_F` for any
+//! configuration of a consistent loop (SPEC §9), so the KKT matrix is not singular.
+
+use super::equations::solve_in_place;
+use crate::chain::{Chain, ChainPose};
+
+/// Solves `[M_FF A_Fᵀ; A_F 0][y; μ] = [b; c]` for `y` (in `b`'s place). `mass` is the full
+/// `m × m` matrix, `a` the `3 × m` constraint rows, `open` the DOFs `F`. `false` when singular.
+fn kkt(mass: &[f64], a: &[f64], m: usize, open: &[usize], b: &mut [f64], c: [f64; 3]) -> bool {
+    let nf = open.len();
+    let k = nf + 3;
+    let mut mat = vec![0.0; k * k];
+    let mut rhs = vec![0.0; k];
+    for (i, &di) in open.iter().enumerate() {
+        for (j, &dj) in open.iter().enumerate() {
+            mat[i * k + j] = mass[di * m + dj];
+        }
+        for r in 0..3 {
+            mat[i * k + nf + r] = a[r * m + di];
+            mat[(nf + r) * k + i] = a[r * m + di];
+        }
+        rhs[i] = b[i];
+    }
+    rhs[nf..].copy_from_slice(&c);
+    if !solve_in_place(&mut mat, &mut rhs) {
+        return false;
+    }
+    b.copy_from_slice(&rhs[..nf]);
+    true
+}
+
+/// The rates closest to `rates` in kinetic energy that move only the DOFs `open` and keep the
+/// loop closed (`G v = 0`): the rates of every other DOF are removed (a locked joint, SPEC §5's
+/// settling with the closure). Returns `false` (rates untouched) when the KKT system is singular.
+pub fn project_rates(chain: &Chain, pose: &ChainPose, open: &[usize], rates: &mut [f64]) -> bool {
+    let m = chain.n_dofs();
+    let mass = chain.mass_matrix(pose);
+    let g = chain.closure_matrix(pose);
+    let mut b: Vec<f64> = open
+        .iter()
+        .map(|&d| (0..m).map(|e| mass[d * m + e] * rates[e]).sum())
+        .collect();
+    if !kkt(&mass, &g, m, open, &mut b, [0.0; 3]) {
+        return false;
+    }
+    rates.iter_mut().for_each(|r| *r = 0.0);
+    for (i, &d) in open.iter().enumerate() {
+        rates[d] = b[i];
+    }
+    true
+}
+
+/// Moves the open DOFs' angles `phi` onto the closure manifold by Newton steps in the kinetic
+/// metric: the residual `r = (angle, dx, dy)` of [`Chain::closure_residual`] has the Jacobian
+/// `∂r/∂φ_a = (1, P_y − o′_y, o′_x − P_x)` (a rotation about the pivot `P` of DOF `a` moves the
+/// last joint's centre `o′`), and each step is the smallest correction in `M_FF` that zeroes its
+/// linearisation. An angle is never moved across zero (a hinge does not close by projection): a
+/// DOF the correction would carry across is held where it is and the step solved again without
+/// it.
+/// Up to `iterations` steps, stopping when the residual stops shrinking; returns the final
+/// residual as a length (`max(|(dx, dy)|, |angle| × reach)`).
+pub fn project_positions(
+    chain: &Chain,
+    open: &[usize],
+    phi: &mut [f64],
+    reach: f64,
+    iterations: usize,
+) -> f64 {
+    let m = chain.n_dofs();
+    let size = |r: [f64; 3]| r[1].hypot(r[2]).max(r[0].abs() * reach);
+    let depth = |d: usize, x: f64| if d < m / 2 { -x } else { x };
+    let mut pose = chain.pose(phi);
+    let mut r = chain.closure_residual(&pose);
+    for _ in 0..iterations {
+        if size(r) == 0.0 {
+            break;
+        }
+        let mass = chain.mass_matrix(&pose);
+        let o = chain.joints()[chain.n_joints() - 1].centre;
+        let moved = pose.support.apply(o);
+        let mut jac = vec![0.0; 3 * m];
+        for &a in open {
+            let p = chain.pivot(&pose, a);
+            jac[a] = 1.0;
+            jac[m + a] = p[1] - moved[1];
+            jac[2 * m + a] = moved[0] - p[0];
+        }
+        let mut free: Vec<usize> = open.to_vec();
+        let trial = loop {
+            let mut dx = vec![0.0; free.len()];
+            if free.len() < 3 || !kkt(&mass, &jac, m, &free, &mut dx, [-r[0], -r[1], -r[2]]) {
+                break None;
+            }
+            let mut trial = phi.to_vec();
+            let mut held = Vec::new();
+            for (i, &d) in free.iter().enumerate() {
+                let x = trial[d] + dx[i];
+                if depth(d, x) < 0.0 {
+                    held.push(d);
+                }
+                trial[d] = x;
+            }
+            if held.is_empty() {
+                break Some(trial);
+            }
+            free.retain(|f| !held.contains(f));
+        };
+        let Some(trial) = trial else {
+            break;
+        };
+        let trial_pose = chain.pose(&trial);
+        let trial_r = chain.closure_residual(&trial_pose);
+        if size(trial_r) >= size(r) {
+            break;
+        }
+        phi.copy_from_slice(&trial);
+        (pose, r) = (trial_pose, trial_r);
+    }
+    size(r)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::chain::arch::VoussoirArch;
+
+    /// The 20-voussoir arch's collapse mechanism (joints 3, 15 intrados; 9, 20 extrados).
+    fn mechanism() -> (Chain, Vec<usize>) {
+        let chain = VoussoirArch::semicircular(5.0, 0.75, 20).chain().unwrap();
+        let n = chain.n_joints();
+        (chain, vec![3, 15, n + 9, n + 20])
+    }
+
+    /// Angles off the closure by millimetres are brought back to round-off in a few Newton
+    /// steps, on the admissible side; rates are projected onto `G v = 0` and a second projection
+    /// changes nothing.
+    #[test]
+    fn positions_and_rates_back_on_the_closure() {
+        let (chain, open) = mechanism();
+        let m = chain.n_dofs();
+        let mut phi = vec![0.0; m];
+        for (&d, x) in open.iter().zip([-0.010, -0.015, 0.020, 0.010]) {
+            phi[d] = x;
+        }
+        let before = chain.closure_residual(&chain.pose(&phi));
+        assert!(before[1].hypot(before[2]) > 1e-3, "{before:?}");
+        let r = project_positions(&chain, &open, &mut phi, 10.0, 8);
+        assert!(r < 1e-12, "{r}");
+        assert!(phi[3] < 0.0 && phi[15] < 0.0 && phi[m / 2 + 9] > 0.0 && phi[m / 2 + 20] > 0.0);
+        let pose = chain.pose(&phi);
+        let mut rates = vec![0.0; m];
+        for (&d, v) in open.iter().zip([-0.1, -0.1, 0.1, 0.1]) {
+            rates[d] = v;
+        }
+        assert!(project_rates(&chain, &pose, &open, &mut rates));
+        let g = chain.closure_matrix(&pose);
+        for row in 0..3 {
+            let gv: f64 = (0..m).map(|a| g[row * m + a] * rates[a]).sum();
+            assert!(gv.abs() < 1e-12, "{gv}");
+        }
+        let again = {
+            let mut r2 = rates.clone();
+            assert!(project_rates(&chain, &pose, &open, &mut r2));
+            r2
+        };
+        for (a, b) in rates.iter().zip(&again) {
+            assert!((a - b).abs() <= 1e-12 * a.abs().max(1.0));
+        }
+    }
+}

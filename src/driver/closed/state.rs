@@ -1,0 +1,168 @@
+//! The explicit state of a loop's run ([`LoopState`]), its options, its events and its outcome.
+
+use crate::chain::Chain;
+use crate::error::RockingError;
+use crate::model::cone::ModelOptions;
+use crate::model::configuration::Status;
+
+/// Options of a loop's time history.
+#[derive(Clone, Debug)]
+pub struct LoopOptions {
+    /// Gravity (m/s², positive).
+    pub gravity: f64,
+    /// Time step (s).
+    pub dt: f64,
+    /// End of the run (s).
+    pub duration: f64,
+    /// The models' options.
+    pub model: ModelOptions,
+    /// Settled when the kinetic energy after an impact is below this share of the run's largest.
+    pub settle_ratio: f64,
+    /// Collapse safeguard: a hinge angle beyond this (rad).
+    pub collapse_angle: f64,
+    /// Ask the opening model every this many steps while moving (1: every step).
+    pub check_every: usize,
+    /// Record the state every this many steps (0: no history).
+    pub record_every: usize,
+    /// Project the open DOFs onto the closure after every step (positions onto `G(q) = 0`,
+    /// rates onto `G v = 0`, kinetic metric); `false`: only measure the residual.
+    pub project: bool,
+    /// Locking a chattering joint: a closing whose impact keeps more than `1 − lock_loss` of the
+    /// kinetic energy, with every closing joint's rate below [`LoopOptions::lock_rate`], closes
+    /// the joints for good (their rates removed by the kinetic-metric projection with the
+    /// closure) instead of adopting the impact model's configuration.
+    pub lock_loss: f64,
+    /// The rate below which a closing joint may be locked (rad/s); `None`: `g dt / L`, the rate
+    /// gravity gives in one step at the chain's reach `L` (a rebound slower than this lasts
+    /// about one step: the fixed step cannot resolve it).
+    pub lock_rate: Option<f64>,
+}
+
+impl Default for LoopOptions {
+    fn default() -> LoopOptions {
+        LoopOptions {
+            gravity: crate::model::column::GRAVITY,
+            dt: 1e-3,
+            duration: 10.0,
+            model: ModelOptions::default(),
+            settle_ratio: 1e-6,
+            collapse_angle: std::f64::consts::FRAC_PI_4,
+            check_every: 1,
+            record_every: 0,
+            project: true,
+            lock_loss: 1e-6,
+            lock_rate: None,
+        }
+    }
+}
+
+/// The state of a loop: time, DOF angles and rates (`2J`, SPEC §1 order), statuses (`J`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct LoopState {
+    pub time: f64,
+    pub phi: Vec<f64>,
+    pub rates: Vec<f64>,
+    pub statuses: Vec<Status>,
+}
+
+impl LoopState {
+    /// The closed loop at rest at time 0.
+    pub fn at_rest(chain: &Chain) -> LoopState {
+        LoopState {
+            time: 0.0,
+            phi: vec![0.0; chain.n_dofs()],
+            rates: vec![0.0; chain.n_dofs()],
+            statuses: vec![Status::Closed; chain.n_joints()],
+        }
+    }
+
+    /// The open DOFs.
+    pub fn open_dofs(&self) -> Vec<usize> {
+        crate::model::configuration::open_dofs(&self.statuses)
+    }
+}
+
+/// What happened.
+#[derive(Clone, Debug, PartialEq)]
+pub enum LoopEventKind {
+    /// The opening model chose a new configuration (from rest, or a new hinge while moving).
+    Opening,
+    /// The flagged joints closed; the impact model chose the configuration after.
+    Closing {
+        joints: Vec<usize>,
+        kinetic_before: f64,
+        kinetic_after: f64,
+    },
+    /// The flagged joints closed at a rate too small to resolve (a chatter): locked, their rates
+    /// removed by the kinetic-metric projection with the closure.
+    Locked {
+        joints: Vec<usize>,
+        kinetic_before: f64,
+        kinetic_after: f64,
+    },
+    /// The kinetic energy vanished: at rest.
+    Settled,
+    /// The mechanism passed its point of no return.
+    Collapsed,
+}
+
+/// An event, with the statuses after it (`-1`, `0`, `+1` per joint).
+#[derive(Clone, Debug, PartialEq)]
+pub struct LoopEvent {
+    pub time: f64,
+    pub kind: LoopEventKind,
+    pub statuses: Vec<i8>,
+}
+
+/// The result of a run.
+#[derive(Clone, Debug)]
+pub struct LoopOutcome {
+    pub events: Vec<LoopEvent>,
+    /// The state at the end (the collapse, or the duration).
+    pub state: LoopState,
+    pub collapsed: bool,
+    /// Largest `|φ|` of any DOF.
+    pub peak_angle: f64,
+    /// Largest closure residual of the state after a step (m): `max(|gap|, |rotation| × reach)`
+    /// (after the projection when [`LoopOptions::project`]).
+    pub max_closure_residual: f64,
+    /// Largest closure residual one integration step leaves before the projection (m).
+    pub max_step_drift: f64,
+    /// `(t, φ)` samples every [`LoopOptions::record_every`] steps and at events.
+    pub history: Vec<(f64, Vec<f64>)>,
+}
+
+/// Errors of a loop run.
+#[derive(Clone, Debug)]
+pub enum LoopError {
+    /// Bad options (the field named).
+    Options(String),
+    /// A model failed.
+    Model(RockingError),
+    /// The constrained equations were singular at time `t`.
+    Singular(f64),
+    /// Events without time advancing (100 in a row) at time `t`: the located closures and the
+    /// models' choices chatter (a joint the impact or opening model opens recloses at once).
+    Stalled(f64),
+}
+
+impl std::fmt::Display for LoopError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            LoopError::Options(s) => write!(f, "invalid option: {s}"),
+            LoopError::Model(e) => write!(f, "{e}"),
+            LoopError::Singular(t) => {
+                write!(f, "the constrained equations are singular at t = {t} s")
+            }
+            LoopError::Stalled(t) => write!(f, "events without progress at t = {t} s"),
+        }
+    }
+}
+
+impl std::error::Error for LoopError {}
+
+impl From<RockingError> for LoopError {
+    fn from(e: RockingError) -> LoopError {
+        LoopError::Model(e)
+    }
+}
