@@ -204,3 +204,65 @@ fn a_drum_scene_with_a_bad_field_fails_naming_it() {
         assert!(!out.exists(), "output written for a failed scene");
     }
 }
+
+/// An arch scene runs the loop driver: the bundled 20-voussoir arch under a half-sine of 3 λ
+/// collapses (as `tests/arch_dynamics.rs`, `driver_pulse_well_above_lambda_collapses`), with the
+/// closure kept, its hinges listed and both charts drawn; an arch scene with a column's setting
+/// fails naming it.
+#[test]
+fn an_arch_scene_runs_the_loop_driver() {
+    let out = fresh_dir("arch_half_sine");
+    let plot = out.join("plot.svg");
+    let run = simulate(&scenes().join("arch_half_sine.json"), &out, Some(&plot));
+    assert!(run.ok, "{}", run.stderr);
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["collapsed"], true, "{summary}");
+    let t_end = summary["t_end"].as_f64().unwrap();
+    assert!((t_end - 0.720272).abs() < 1e-6, "{t_end}");
+    assert!(summary["max_closure_residual"].as_f64().unwrap() < 1e-12);
+    assert_eq!(summary["statuses_end"].as_array().unwrap().len(), 21);
+    // The first mechanism: the limit-analysis hinges (3, 15 intrados; 9, 20 extrados).
+    let events = std::fs::read_to_string(out.join("events.jsonl")).unwrap();
+    let first: serde_json::Value = serde_json::from_str(events.lines().next().unwrap()).unwrap();
+    assert_eq!(first["kind"], "opening");
+    let open: Vec<(usize, i64)> = first["statuses"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .enumerate()
+        .filter(|(_, s)| s.as_i64() != Some(0))
+        .map(|(k, s)| (k, s.as_i64().unwrap()))
+        .collect();
+    assert_eq!(open, vec![(3, -1), (9, 1), (15, -1), (20, 1)]);
+    assert!(events.lines().any(|l| l.contains("\"kind\":\"closing\"")));
+    let history = std::fs::read_to_string(out.join("history.csv")).unwrap();
+    assert!(history.starts_with("t,angle_0,"));
+    assert!(history.lines().count() > 700);
+    for chart in [plot.clone(), out.join("plot_history.svg")] {
+        assert!(std::fs::read_to_string(&chart).unwrap().contains("<svg"));
+    }
+
+    let dir = fresh_dir("bad_arch");
+    std::fs::create_dir_all(&dir).unwrap();
+    let scene = dir.join("bad.json");
+    std::fs::write(
+        &scene,
+        r#"{"arch": {"radius": 5, "thickness": 0.75, "voussoirs": 20}, "impacts": 2, "excitation": {"type": "none"}, "duration": 1.0, "dt": 0.001}"#,
+    )
+    .unwrap();
+    let run = simulate(&scene, &dir.join("out"), None);
+    assert!(!run.ok && run.stderr.contains("impacts"), "{}", run.stderr);
+    std::fs::write(
+        &scene,
+        r#"{"arch": {"radius": 5, "thickness": -0.75, "voussoirs": 20}, "excitation": {"type": "none"}, "duration": 1.0, "dt": 0.001}"#,
+    )
+    .unwrap();
+    let run = simulate(&scene, &dir.join("out"), None);
+    assert!(
+        !run.ok && run.stderr.contains("arch.thickness"),
+        "{}",
+        run.stderr
+    );
+    assert!(!dir.join("out").exists());
+}

@@ -10,7 +10,8 @@
 //! }
 //! ```
 //! Unknown fields and bad values are errors that name the field. Record paths are relative to
-//! the scene file.
+//! the scene file. A closed chain (`"arch"` or `"colonnade"` in place of `"blocks"`,
+//! [`closed`]) is read by [`load_any`].
 
 use std::path::{Path, PathBuf};
 
@@ -24,8 +25,10 @@ use crate::model::column::{Block, Column};
 use crate::model::cone::{ModelOptions, Solver};
 use serde::Deserialize;
 
+pub mod closed;
 mod contact;
 use crate::contact::simulation::DrumOptions;
+pub use closed::{LoopScene, LoopShape};
 pub use contact::{FrictionSpec, SchemeChoice};
 
 /// One block, bottom to top.
@@ -136,7 +139,15 @@ pub struct SceneSpec {
     /// Optional title for plots and the summary.
     #[serde(default)]
     pub title: Option<String>,
+    /// The column, bottom to top (or `arch` / `colonnade`: a closed chain).
+    #[serde(default)]
     pub blocks: Vec<BlockSpec>,
+    /// A voussoir arch instead of a column ([`closed`]).
+    #[serde(default)]
+    pub arch: Option<closed::ArchSpec>,
+    /// A capped colonnade instead of a column ([`closed`]).
+    #[serde(default)]
+    pub colonnade: Option<closed::ColonnadeSpec>,
     #[serde(default)]
     pub initial_angles: Option<Vec<f64>>,
     pub excitation: ExcitationSpec,
@@ -209,18 +220,54 @@ fn err(field: &str, message: impl std::fmt::Display) -> SceneError {
     SceneError(format!("{field}: {message}"))
 }
 
-/// Reads and checks a scene file.
+/// Reads and checks a scene file of a column.
 pub fn load(path: &Path) -> Result<Scene, SceneError> {
+    let (spec, base) = read(path)?;
+    build(spec, base, &path.display().to_string())
+}
+
+fn read(path: &Path) -> Result<(SceneSpec, &Path), SceneError> {
     let text = std::fs::read_to_string(path)
         .map_err(|e| SceneError(format!("cannot read {}: {e}", path.display())))?;
     let spec: SceneSpec =
         serde_json::from_str(&text).map_err(|e| SceneError(format!("{}: {e}", path.display())))?;
-    let base = path.parent().unwrap_or(Path::new("."));
-    build(spec, base, &path.display().to_string())
+    Ok((spec, path.parent().unwrap_or(Path::new("."))))
+}
+
+/// A scene of a column or of a closed chain.
+pub enum AnyScene {
+    Column(Box<Scene>),
+    Loop(Box<LoopScene>),
+}
+
+/// Reads and checks a scene file of a column or of a closed chain (`arch`, `colonnade`).
+pub fn load_any(path: &Path) -> Result<AnyScene, SceneError> {
+    let (spec, base) = read(path)?;
+    build_any(spec, base, &path.display().to_string())
+}
+
+/// [`build`] for a column, [`closed`] for an arch or a colonnade.
+pub fn build_any(spec: SceneSpec, base: &Path, name: &str) -> Result<AnyScene, SceneError> {
+    if spec.arch.is_none() && spec.colonnade.is_none() {
+        return build(spec, base, name).map(|s| AnyScene::Column(Box::new(s)));
+    }
+    let excitation = excitation(&spec.excitation, base)?;
+    closed::build(spec, excitation, name).map(|s| AnyScene::Loop(Box::new(s)))
 }
 
 /// Checks a parsed scene and builds the column, excitation and options.
 pub fn build(spec: SceneSpec, base: &Path, name: &str) -> Result<Scene, SceneError> {
+    if spec.arch.is_some() || spec.colonnade.is_some() {
+        let field = if spec.arch.is_some() {
+            "arch"
+        } else {
+            "colonnade"
+        };
+        return Err(err(
+            field,
+            "a closed chain, not a column: read it with scene::load_any",
+        ));
+    }
     if spec.blocks.is_empty() {
         return Err(err("blocks", "needs at least one block"));
     }

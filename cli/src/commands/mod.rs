@@ -5,6 +5,7 @@ pub mod oas;
 pub mod oc;
 pub mod simulate;
 pub mod simulate_drums;
+pub mod simulate_loop;
 pub mod sweep;
 pub mod t1;
 pub mod thesis;

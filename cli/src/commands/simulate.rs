@@ -1,5 +1,6 @@
 //! `rocking simulate SCENE.json --out DIR [--plot FILE.svg|png]`: a time history of a scene.
-//! A scene whose joints may slide or fly runs the contact scheme instead ([`super::simulate_drums`]).
+//! A scene whose joints may slide or fly runs the contact scheme instead ([`super::simulate_drums`]);
+//! an arch or a colonnade runs the loop driver ([`super::simulate_loop`]).
 //!
 //! Writes `DIR/history.csv` (t, interface angles and rates, block rotations, statuses),
 //! `DIR/events.jsonl` (one JSON object per event) and `DIR/summary.json`. Files are written only
@@ -37,7 +38,12 @@ pub struct SimulateArgs {
 /// Runs the command.
 pub fn run(a: &SimulateArgs) -> Result<(), String> {
     let (scene_path, out, plot) = (a.scene.as_path(), a.out.as_path(), a.plot.as_deref());
-    let scene = scene::load(scene_path).map_err(|e| e.to_string())?;
+    let scene = match scene::load_any(scene_path).map_err(|e| e.to_string())? {
+        scene::AnyScene::Column(scene) => scene,
+        scene::AnyScene::Loop(scene) => {
+            return super::simulate_loop::run(&scene, scene_path, out, plot)
+        }
+    };
     if scene.contact.is_some() {
         return super::simulate_drums::run(&scene, scene_path, out, plot);
     }

@@ -1,0 +1,299 @@
+//! `rocking simulate` on a closed chain (`"arch"` or `"colonnade"` scene; docs/arches.md): the
+//! loop driver (`rocking::driver::simulate_loop`).
+//!
+//! Writes `DIR/history.csv` (t; per joint its signed angle `angle_k = phĭ_k + phî_k`),
+//! `DIR/events.jsonl` (`t`, `kind`: opening, closing, locked, settled, collapsed; `joints` that
+//! closed, kinetic energy before and after, `statuses` after) and `DIR/summary.json` (collapsed,
+//! t_end, peak joint angle, events by kind, the joints that ever opened as hinges and about which
+//! face, the closure residual after the projection and the drift of one step before it).
+//! `--plot FILE` draws the chain in its closed geometry with every hinge that opened marked at its
+//! pivot corner, and the joint angles against time in `FILE_history.EXT`.
+
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use rocking::driver::closed::{LoopEventKind, LoopOutcome, LoopState};
+use rocking::driver::simulate_loop;
+use rocking::scene::LoopScene;
+use serde::Serialize;
+
+use crate::output::{json_tree, write_atomic};
+use crate::plot::{Chart, Marker, Series, Style, COLORS};
+
+/// Runs the loop scene and writes its outputs.
+pub fn run(
+    scene: &LoopScene,
+    scene_path: &Path,
+    out: &Path,
+    plot: Option<&Path>,
+) -> Result<(), String> {
+    let started = Instant::now();
+    let outcome = simulate_loop(
+        &scene.chain,
+        &scene.excitation,
+        LoopState::at_rest(&scene.chain),
+        &scene.options,
+    )
+    .map_err(|e| e.to_string())?;
+    let wall = started.elapsed().as_secs_f64();
+    let n = scene.chain.n_joints();
+    if scene.output.history {
+        write_atomic(
+            &out.join("history.csv"),
+            history_csv(&outcome, n).as_bytes(),
+        )?;
+    }
+    if scene.output.events {
+        let mut lines = String::new();
+        for e in &outcome.events {
+            let mut line = serde_json::json!({
+                "t": e.time, "kind": kind_name(&e.kind), "statuses": e.statuses,
+            });
+            if let LoopEventKind::Closing {
+                joints,
+                kinetic_before,
+                kinetic_after,
+            }
+            | LoopEventKind::Locked {
+                joints,
+                kinetic_before,
+                kinetic_after,
+            } = &e.kind
+            {
+                line["joints"] = serde_json::json!(joints);
+                line["kinetic_before"] = serde_json::json!(kinetic_before);
+                line["kinetic_after"] = serde_json::json!(kinetic_after);
+            }
+            lines.push_str(&line.to_string());
+            lines.push('\n');
+        }
+        write_atomic(&out.join("events.jsonl"), lines.as_bytes())?;
+    }
+    let summary = json_tree(&Summary::of(scene, scene_path, &outcome, wall))?;
+    let text = serde_json::to_string_pretty(&summary).map_err(|e| e.to_string())?;
+    write_atomic(&out.join("summary.json"), format!("{text}\n").as_bytes())?;
+    if let Some(p) = plot {
+        geometry_chart(scene, &outcome).write(p)?;
+        history_chart(scene, &outcome)?.write(&history_path(p))?;
+    }
+    println!(
+        "{}: {} at t = {:.4} s, {} events, peak joint angle {:.6} rad, closure residual {:.1e} m \
+         ({:.3} s wall) -> {}",
+        scene.title,
+        if outcome.collapsed {
+            "collapsed"
+        } else {
+            "end of duration"
+        },
+        outcome.state.time,
+        outcome.events.len(),
+        outcome.peak_angle,
+        outcome.max_closure_residual,
+        wall,
+        out.display()
+    );
+    Ok(())
+}
+
+/// `plot.svg` → `plot_history.svg`.
+pub fn history_path(p: &Path) -> PathBuf {
+    let stem = p.file_stem().map_or("plot".into(), |s| s.to_string_lossy());
+    let ext = p.extension().map_or("svg".into(), |s| s.to_string_lossy());
+    p.with_file_name(format!("{stem}_history.{ext}"))
+}
+
+fn kind_name(k: &LoopEventKind) -> &'static str {
+    match k {
+        LoopEventKind::Opening => "opening",
+        LoopEventKind::Closing { .. } => "closing",
+        LoopEventKind::Locked { .. } => "locked",
+        LoopEventKind::Settled => "settled",
+        LoopEventKind::Collapsed => "collapsed",
+    }
+}
+
+/// The history as CSV: t and per joint its signed angle (rad).
+pub fn history_csv(o: &LoopOutcome, n: usize) -> String {
+    let mut s = String::from("t");
+    for k in 0..n {
+        let _ = write!(s, ",angle_{k}");
+    }
+    s.push('\n');
+    for (t, phi) in &o.history {
+        let _ = write!(s, "{t}");
+        for k in 0..n {
+            let _ = write!(s, ",{}", phi[k] + phi[n + k]);
+        }
+        s.push('\n');
+    }
+    s
+}
+
+/// Every (joint, face) that was open after some event: `-1` about `R_k` (an arch's intrados),
+/// `+1` about `L_k` (extrados).
+fn hinges(o: &LoopOutcome) -> Vec<(usize, i8)> {
+    let mut seen = std::collections::BTreeSet::new();
+    for e in &o.events {
+        for (k, &s) in e.statuses.iter().enumerate() {
+            if s != 0 {
+                seen.insert((k, s));
+            }
+        }
+    }
+    seen.into_iter().collect()
+}
+
+/// `summary.json`.
+#[derive(Serialize)]
+struct Summary<'a> {
+    scene: String,
+    title: &'a str,
+    excitation: String,
+    collapsed: bool,
+    t_end: f64,
+    peak_angle: f64,
+    /// Events by kind.
+    events: BTreeMap<&'static str, usize>,
+    /// `[joint, face]` of every hinge that opened (`-1`: about `R_k`, `+1`: about `L_k`).
+    hinges: Vec<(usize, i8)>,
+    statuses_end: Vec<i8>,
+    max_closure_residual: f64,
+    max_step_drift: f64,
+    dt: f64,
+    wall_time_s: f64,
+}
+
+impl<'a> Summary<'a> {
+    fn of(scene: &'a LoopScene, path: &Path, o: &LoopOutcome, wall: f64) -> Summary<'a> {
+        let mut events = BTreeMap::new();
+        for e in &o.events {
+            *events.entry(kind_name(&e.kind)).or_insert(0) += 1;
+        }
+        Summary {
+            scene: path.display().to_string(),
+            title: &scene.title,
+            excitation: scene.excitation.describe(),
+            collapsed: o.collapsed,
+            t_end: o.state.time,
+            peak_angle: o.peak_angle,
+            events,
+            hinges: hinges(o),
+            statuses_end: o.state.statuses.iter().map(|s| s.as_i8()).collect(),
+            max_closure_residual: o.max_closure_residual,
+            max_step_drift: o.max_step_drift,
+            dt: scene.options.dt,
+            wall_time_s: wall,
+        }
+    }
+}
+
+/// The chain in its closed geometry (each joint's face, the corners joined in chain order: an
+/// arch's intrados and extrados as polygons), every hinge that opened marked at its pivot.
+fn geometry_chart(scene: &LoopScene, o: &LoopOutcome) -> Chart {
+    let joints = scene.chain.joints();
+    let mut chart = Chart {
+        title: format!("{} — hinges that opened", scene.title),
+        x_label: "x [m]".into(),
+        y_label: "y [m]".into(),
+        ..Chart::default()
+    };
+    let right: Vec<(f64, f64)> = joints
+        .iter()
+        .map(|j| (j.right_corner()[0], j.right_corner()[1]))
+        .collect();
+    let left: Vec<(f64, f64)> = joints
+        .iter()
+        .map(|j| (j.left_corner()[0], j.left_corner()[1]))
+        .collect();
+    chart.series.push(Series {
+        name: "R corners (intrados)".into(),
+        points: right.clone(),
+        style: Style::Line,
+        color: COLORS[0],
+    });
+    chart.series.push(Series {
+        name: "L corners (extrados)".into(),
+        points: left.clone(),
+        style: Style::Line,
+        color: COLORS[0],
+    });
+    // The joint faces as one polyline: R_0 → L_0 → L_1 → R_1 → R_2 → L_2 → … (the steps between
+    // faces run along the edges already drawn).
+    let faces: Vec<(f64, f64)> = right
+        .iter()
+        .zip(&left)
+        .enumerate()
+        .flat_map(|(k, (r, l))| if k % 2 == 0 { [*r, *l] } else { [*l, *r] })
+        .collect();
+    chart.series.push(Series {
+        name: "joints".into(),
+        points: faces,
+        style: Style::Dashed,
+        color: COLORS[7],
+    });
+    let hinges = hinges(o);
+    for (face, name, color) in [
+        (-1i8, "hinge about R", COLORS[1]),
+        (1, "hinge about L", COLORS[2]),
+    ] {
+        let points: Vec<(f64, f64)> = hinges
+            .iter()
+            .filter(|h| h.1 == face)
+            .map(|&(k, _)| if face < 0 { right[k] } else { left[k] })
+            .collect();
+        if !points.is_empty() {
+            chart.series.push(Series {
+                name: name.into(),
+                points,
+                style: Style::Points,
+                color,
+            });
+        }
+    }
+    chart
+}
+
+/// The joint angles against time (every joint that moved), events marked.
+fn history_chart(scene: &LoopScene, o: &LoopOutcome) -> Result<Chart, String> {
+    if o.history.is_empty() {
+        return Err("--plot needs the history (output.history must be true)".into());
+    }
+    let n = scene.chain.n_joints();
+    let mut chart = Chart {
+        title: format!("{} — {}", scene.title, scene.excitation.describe()),
+        x_label: "t [s]".into(),
+        y_label: "joint angle [rad]".into(),
+        ..Chart::default()
+    };
+    for k in 0..n {
+        let points: Vec<(f64, f64)> = o
+            .history
+            .iter()
+            .map(|(t, phi)| (*t, phi[k] + phi[n + k]))
+            .collect();
+        if points.iter().any(|p| p.1 != 0.0) {
+            chart.series.push(Series {
+                name: format!("joint {k}"),
+                points,
+                style: Style::Line,
+                color: COLORS[k % COLORS.len()],
+            });
+        }
+    }
+    for e in &o.events {
+        let color = match e.kind {
+            LoopEventKind::Closing { .. } => COLORS[1],
+            LoopEventKind::Opening => COLORS[2],
+            LoopEventKind::Collapsed => (0, 0, 0),
+            _ => COLORS[7],
+        };
+        chart.markers.push(Marker {
+            x: e.time,
+            kind: kind_name(&e.kind).to_string(),
+            color,
+        });
+    }
+    Ok(chart)
+}

@@ -1,0 +1,179 @@
+//! Scenes of closed chains (SPEC §9): `{"arch": {...}}` or `{"colonnade": {...}}` in place of
+//! `blocks`, with the same excitation, duration, dt, solver, gravity and output settings.
+//!
+//! ```json
+//! {
+//!   "arch": {"radius": 5, "thickness": 0.75, "embrace_angle": 180, "voussoirs": 20,
+//!            "density": 2000, "depth": 1},
+//!   "excitation": {"type": "half_sine", "amplitude": -4.4, "duration": 1.0},
+//!   "duration": 2.0, "dt": 0.001
+//! }
+//! ```
+//! `embrace_angle` is in degrees (180: semicircular). The colonnade is Makris & Vassiliou's
+//! frame: `{"width", "height", "column_mass", "span", "beam_height", "beam_mass"}` (two equal
+//! monolithic columns, a beam `span + width` long flush with their outer faces).
+
+use serde::Deserialize;
+
+use super::{err, SceneError, SceneSpec};
+use crate::chain::arch::VoussoirArch;
+use crate::chain::colonnade::CappedColonnade;
+use crate::chain::Chain;
+use crate::driver::closed::LoopOptions;
+use crate::ground::excitation::Excitation;
+use crate::model::cone::{ModelOptions, Solver};
+
+/// A voussoir arch (SPEC §9).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ArchSpec {
+    pub radius: f64,
+    pub thickness: f64,
+    /// Angle of embrace `2β` in degrees (default 180).
+    #[serde(default)]
+    pub embrace_angle: Option<f64>,
+    pub voussoirs: usize,
+    /// kg/m³ (default 2000).
+    #[serde(default)]
+    pub density: Option<f64>,
+    /// Out of plane (m, default 1).
+    #[serde(default)]
+    pub depth: Option<f64>,
+}
+
+/// Makris & Vassiliou's capped colonnade (two equal columns and a beam).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ColonnadeSpec {
+    pub width: f64,
+    pub height: f64,
+    pub column_mass: f64,
+    pub span: f64,
+    pub beam_height: f64,
+    pub beam_mass: f64,
+}
+
+/// The geometry a loop scene was built from (to draw it).
+#[derive(Clone, Debug, PartialEq)]
+pub enum LoopShape {
+    Arch(VoussoirArch),
+    Colonnade(CappedColonnade),
+}
+
+/// A loop scene ready to simulate with [`crate::driver::simulate_loop`].
+pub struct LoopScene {
+    pub title: String,
+    pub shape: LoopShape,
+    pub chain: Chain,
+    pub excitation: Excitation,
+    /// The loop driver's options (`record_every` from `output.every` when a history is written).
+    pub options: LoopOptions,
+    pub output: super::OutputSpec,
+}
+
+/// Builds the loop scene of `spec` (which has `arch` or `colonnade`); `excitation` already built.
+pub(super) fn build(
+    spec: SceneSpec,
+    excitation: Excitation,
+    name: &str,
+) -> Result<LoopScene, SceneError> {
+    // Settings of the column drivers have no meaning here: name them rather than ignore them.
+    let column_only: [(&str, bool); 10] = [
+        ("blocks", !spec.blocks.is_empty()),
+        ("initial_angles", spec.initial_angles.is_some()),
+        ("impacts", spec.impacts != 1),
+        ("integrator", spec.integrator.is_some()),
+        ("locator", spec.locator.is_some()),
+        ("friction", spec.friction.is_some()),
+        ("on_sliding", spec.on_sliding.is_some()),
+        ("on_tension", spec.on_tension.is_some()),
+        ("scheme", spec.scheme.is_some()),
+        ("continue_until_fallen", spec.continue_until_fallen),
+    ];
+    if let Some((field, _)) = column_only.iter().find(|(_, set)| *set) {
+        return Err(err(field, "not used by a closed chain (arch, colonnade)"));
+    }
+    if spec.exact_velocity_terms {
+        return Err(err(
+            "exact_velocity_terms",
+            "a closed chain always uses the exact velocity terms",
+        ));
+    }
+    let invalid =
+        |v: crate::validate::InvalidValue| err(&v.field, format!("{}: {}", v.value, v.rule));
+    let (shape, chain) = match (spec.arch, spec.colonnade) {
+        (Some(a), None) => {
+            let arch = VoussoirArch {
+                radius: a.radius,
+                thickness: a.thickness,
+                embrace_angle: a.embrace_angle.unwrap_or(180.0).to_radians(),
+                voussoirs: a.voussoirs,
+                density: a.density.unwrap_or(2000.0),
+                depth: a.depth.unwrap_or(1.0),
+            };
+            let chain = arch.chain().map_err(invalid)?;
+            (LoopShape::Arch(arch), chain)
+        }
+        (None, Some(c)) => {
+            let frame = CappedColonnade::frame(
+                c.width,
+                c.height,
+                c.column_mass,
+                c.span,
+                c.beam_height,
+                c.beam_mass,
+            );
+            let chain = frame.chain().map_err(invalid)?;
+            (LoopShape::Colonnade(frame), chain)
+        }
+        _ => return Err(err("arch", "give one of arch and colonnade")),
+    };
+    let solver = match spec.solver.as_deref() {
+        None | Some("auto") => Solver::Auto,
+        Some("enumerate") => Solver::Enumerate,
+        Some("projection") => Solver::Projection,
+        Some(other) => {
+            return Err(err(
+                "solver",
+                format!("unknown solver {other:?} (auto, enumerate, projection)"),
+            ))
+        }
+    };
+    let positive = |field: &str, v: f64| {
+        if v.is_finite() && v > 0.0 {
+            Ok(v)
+        } else {
+            Err(err(
+                field,
+                format!("{v}: must be a finite number greater than zero"),
+            ))
+        }
+    };
+    if spec.output.every == 0 {
+        return Err(err("output.every", "must be >= 1"));
+    }
+    let defaults = LoopOptions::default();
+    let options = LoopOptions {
+        gravity: positive("gravity", spec.gravity.unwrap_or(defaults.gravity))?,
+        dt: positive("dt", spec.dt)?,
+        duration: positive("duration", spec.duration)?,
+        model: ModelOptions {
+            solver,
+            ..ModelOptions::default()
+        },
+        record_every: if spec.output.history {
+            spec.output.every
+        } else {
+            0
+        },
+        ..defaults
+    };
+    Ok(LoopScene {
+        title: spec.title.unwrap_or_else(|| name.to_string()),
+        shape,
+        chain,
+        excitation,
+        options,
+        output: spec.output,
+    })
+}
