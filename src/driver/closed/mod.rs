@@ -127,6 +127,8 @@ struct Runner<'a> {
     reach: f64,
     /// Rate below which a grazing closing locks (rad/s).
     lock_rate: f64,
+    /// The ground accelerations the closed loop at rest has been found to resist (m/s²).
+    resisted: Option<(f64, f64)>,
     /// Potential energy of the closed loop (J), and the round-off allowed below it.
     closed_potential: f64,
     potential_tolerance: f64,
@@ -153,6 +155,7 @@ impl<'a> Runner<'a> {
             lock_rate: options
                 .lock_rate
                 .unwrap_or(options.gravity * options.dt / reach),
+            resisted: None,
             closed_potential: 0.0,
             potential_tolerance: 0.0,
             max_kinetic: 0.0,
@@ -195,6 +198,20 @@ impl<'a> Runner<'a> {
     /// The opening model at `s` under `ag`: adopts its configuration if it differs (new joints at
     /// zero angle) and, from rest, only if it moves something. Returns whether it changed.
     fn opening(&mut self, s: &mut LoopState, ag: f64) -> Result<bool, LoopError> {
+        let (statuses, moves) = self.choice(s, ag)?;
+        let moving = s.rates.iter().any(|&r| r != 0.0);
+        // From rest: adopt what the model chose when it moves something; while moving: adopt a
+        // different configuration.
+        if (!moving && moves) || (moving && statuses != s.statuses) {
+            s.statuses = statuses;
+            self.event(s, LoopEventKind::Opening);
+            return Ok(true);
+        }
+        Ok(false)
+    }
+
+    /// The opening model's configuration at `s` under `ag`, and whether it moves anything.
+    fn choice(&self, s: &LoopState, ag: f64) -> Result<(Vec<Status>, bool), LoopError> {
         let pose = self.chain.pose(&s.phi);
         let mass = self.chain.mass_matrix(&pose);
         let q = self.chain.load_vector(&pose, ag, self.options.gravity);
@@ -231,16 +248,39 @@ impl<'a> Runner<'a> {
                 }
             }
         }
-        let moving = s.rates.iter().any(|&r| r != 0.0);
         let moves = acc.iter().any(|&a| a != 0.0);
-        // From rest: adopt what the model chose when it moves something; while moving: adopt a
-        // different configuration.
-        if (!moving && moves) || (moving && statuses != s.statuses) {
-            s.statuses = statuses;
-            self.event(s, LoopEventKind::Opening);
-            return Ok(true);
+        Ok((statuses, moves))
+    }
+
+    /// The interval of ground accelerations the closed loop at rest `s` resists, by bisection on
+    /// each side with the opening model (to 1e-9 relative; its ends are accelerations the model
+    /// answered "at rest" to). `(0, 0)` if it does not resist `a_g = 0`.
+    fn resisted_interval(&self, s: &LoopState) -> Result<(f64, f64), LoopError> {
+        let opens = |ag: f64| self.choice(s, ag).map(|c| c.1);
+        if opens(0.0)? {
+            return Ok((0.0, 0.0));
         }
-        Ok(false)
+        let mut ends = [0.0; 2];
+        for (end, sign) in ends.iter_mut().zip([-1.0, 1.0]) {
+            let (mut lo, mut hi) = (0.0, 0.01 * self.options.gravity);
+            while !opens(sign * hi)? {
+                lo = hi;
+                hi *= 2.0;
+                if hi > 1e3 * self.options.gravity {
+                    break;
+                }
+            }
+            while hi - lo > 1e-9 * hi {
+                let mid = 0.5 * (lo + hi);
+                if opens(sign * mid)? {
+                    hi = mid;
+                } else {
+                    lo = mid;
+                }
+            }
+            *end = sign * lo;
+        }
+        Ok((ends[0], ends[1]))
     }
 
     fn residual(&self, phi: &[f64]) -> f64 {
@@ -302,7 +342,32 @@ impl<'a> Runner<'a> {
             let dt = opts.dt.min(t_end - s.time);
             let at_rest = s.rates.iter().all(|&r| r == 0.0);
             let ag_now = self.ag(s.time);
+            // At rest in the closed geometry, the loop resists every ground acceleration between
+            // two it has resisted: each mechanism's power of the loads is linear in `a_g`, so the
+            // accelerations no admissible mechanism turns into positive power form an interval.
+            // Inside the interval of those the opening model has answered "at rest", it is not
+            // asked again (the same answer, without its cost at every step of a record); the
+            // interval is found by bisection the first time the loop is at rest closed.
+            let reference = at_rest
+                && s.phi.iter().all(|&p| p == 0.0)
+                && !s.statuses.iter().any(|st| st.is_open());
+            if reference && self.resisted.is_none() {
+                self.resisted = Some(self.resisted_interval(&s)?);
+            }
+            if reference
+                && self
+                    .resisted
+                    .is_some_and(|(lo, hi)| lo <= ag_now && ag_now <= hi)
+            {
+                s.time += dt;
+                continue;
+            }
             if at_rest && !self.opening(&mut s, ag_now)? {
+                if reference {
+                    self.resisted = Some(self.resisted.map_or((ag_now, ag_now), |(lo, hi)| {
+                        (lo.min(ag_now), hi.max(ag_now))
+                    }));
+                }
                 s.time += dt;
                 continue;
             }
