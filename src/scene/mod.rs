@@ -27,9 +27,11 @@ use serde::Deserialize;
 
 pub mod closed;
 mod contact;
+mod summary;
 use crate::contact::simulation::DrumOptions;
 pub use closed::{LoopScene, LoopShape};
 pub use contact::{FrictionSpec, SchemeChoice};
+pub use summary::{Energy, Summary};
 
 /// One block, bottom to top.
 #[derive(Debug, Deserialize)]
