@@ -353,13 +353,14 @@ impl Stepper {
     /// geometry.
     pub(super) fn fill_contacts(&mut self) {
         for k in 0..self.drums.len() {
+            // Field by field: the rows move in place instead of through a temporary.
             let geo = &self.predicted[k];
-            self.contacts[k] = JointContacts {
-                active: self.flags[k],
-                bilateral: [false; 2],
-                rows: [geo.ends[0].rows, geo.ends[1].rows],
-                mu: self.mu[k],
-            };
+            let c = &mut self.contacts[k];
+            c.active = self.flags[k];
+            c.bilateral = [false; 2];
+            c.rows[0] = geo.ends[0].rows;
+            c.rows[1] = geo.ends[1].rows;
+            c.mu = self.mu[k];
         }
     }
 
