@@ -159,7 +159,13 @@ pub struct Stepper {
     pub(super) flags: Vec<[bool; 2]>,
     pub(super) shifts: Vec<[f64; 3]>,
     pub(super) landing: Vec<[bool; 2]>,
+    /// Gap and normal rate of every end at the start of the sub-step (see `rates_fresh`).
     pub(super) start_rates: Vec<[[f64; 2]; 2]>,
+    /// Whether `start_rates` are those of the current state: set at the top of every round of
+    /// [`Stepper::step`], cleared when a sub-step begins to change the state. The landing
+    /// predictions, the index set and the missed-landing check then share one computation of the
+    /// rates (the same function of the same state: the same numbers).
+    pub(super) rates_fresh: bool,
     pub(super) missed: Vec<[Option<f64>; 2]>,
     pub(super) watching: bool,
     pub(super) missed_found: Option<f64>,
@@ -227,6 +233,7 @@ impl Stepper {
             shifts: vec![[0.0; 3]; n],
             landing: vec![[false; 2]; n],
             start_rates: vec![[[0.0; 2]; 2]; n],
+            rates_fresh: false,
             missed: vec![[None; 2]; n],
             watching: false,
             missed_found: None,
@@ -261,6 +268,7 @@ impl Stepper {
 
     /// Sets positions and velocities (e.g. from a thesis state); statuses from the gaps.
     pub fn set_state(&mut self, t: f64, q: &[f64], v: &[f64]) {
+        self.rates_fresh = false;
         self.t = t;
         self.q.copy_from_slice(q);
         self.v.copy_from_slice(v);
@@ -311,6 +319,7 @@ impl Stepper {
                 self.t = t_end;
                 return Ok(());
             }
+            self.record_start_rates();
             if self.options.locate_impacts && splits < MAX_SPLITS {
                 if let Some((tau, _)) = self.next_landing(remaining) {
                     splits += 1;
@@ -321,7 +330,6 @@ impl Stepper {
             let watch = self.options.locate_impacts && splits < MAX_SPLITS;
             if watch {
                 self.save();
-                self.record_start_rates();
             }
             self.watching = watch;
             let result = self.substep(remaining, motion, None);
@@ -395,11 +403,19 @@ impl Stepper {
         for k in 0..n {
             for c in 0..2 {
                 let e = &self.geometry[k].ends[c];
-                let closing = || e.gap + h * self.drums.rates(&e.rows, &self.v, k).0 <= 0.0;
+                let un = || {
+                    if self.rates_fresh {
+                        self.start_rates[k][c][1]
+                    } else {
+                        self.drums.rates(&e.rows, &self.v, k).0
+                    }
+                };
+                let closing = || e.gap + h * un() <= 0.0;
                 self.flags[k][c] =
                     !excluded.is_some_and(|e| e[k][c]) && (e.gap <= eps || closing());
             }
         }
+        self.rates_fresh = false;
         self.fill_contacts();
         self.problem.set(&self.contacts, &self.v_free);
         // Persistent contacts: an end that carried an impulse in the last step and is not
