@@ -9,6 +9,9 @@
 //! slenderness is on the safe side at a level when its largest unsafe size is at least the lower
 //! slenderness's (everything the lower one calls unsafe, the higher one calls unsafe too); a level
 //! where the lower slenderness has a larger unsafe size (or the higher none) is a violation.
+//! The same check compares columns of different numbers of blocks (the monolith expected the most
+//! vulnerable) and different numbers of consecutive impacts (less dissipation expected the more
+//! vulnerable), thesis 5.2.
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -36,31 +39,35 @@ struct SpectrumRow {
     p_at_top_level: Option<f64>,
 }
 
-/// One pair of slenderness values of a record.
+/// One pair of spectra of a record that differ in one setting: `lower` is expected to be the
+/// less vulnerable (its largest unsafe size at most `higher`'s at every level).
 #[derive(Serialize)]
 struct PairRow {
     record: String,
     blocks: usize,
     impacts: u32,
+    slenderness: f64,
     lower: f64,
     higher: f64,
     levels_compared: usize,
-    /// Levels where the lower slenderness has a larger unsafe size than the higher one.
+    /// Levels where `lower` has a larger unsafe size than `higher`.
     violations: usize,
     /// Of those, levels where it is larger by more than one cell of the size grid.
     violations_beyond_one_cell: usize,
     violating_levels: Vec<f64>,
 }
 
+/// The pairwise check of spectra that differ in one setting.
 #[derive(Serialize)]
-struct SlendernessCheck {
+struct Check {
     pairs: Vec<PairRow>,
     /// Records with at least one pair compared.
     records: usize,
-    /// Records with a violation in some pair / with a violation against the highest H/B.
+    /// Records with a violation in some pair / with a violation against the highest value
+    /// (H/B: the highest; blocks: the monolith; impacts: the most).
     records_violating: usize,
     records_violating_highest: usize,
-    /// Violating (record, pair, level) triples / beyond one cell / against the highest H/B.
+    /// Violating (record, pair, level) triples / beyond one cell / against the highest value.
     violations: usize,
     violations_beyond_one_cell: usize,
     violations_highest: usize,
@@ -70,7 +77,13 @@ struct SlendernessCheck {
 #[derive(Serialize)]
 struct Overlay {
     spectra: Vec<SpectrumRow>,
-    slenderness_check: SlendernessCheck,
+    /// Higher H/B expected the more vulnerable (thesis 5.3.1, Fig. 45).
+    slenderness_check: Check,
+    /// Fewer blocks expected the more vulnerable: the monolith most (thesis 5.2, Fig. 40, 43);
+    /// `lower`/`higher` are minus the number of blocks.
+    blocks_check: Check,
+    /// More consecutive impacts (less dissipation) expected the more vulnerable (Fig. 43).
+    impacts_check: Check,
 }
 
 /// Index in the size grid of the largest unsafe size at each level (`None`: none unsafe).
@@ -101,8 +114,8 @@ fn spectrum_row(file: &Path, r: &OasReport) -> SpectrumRow {
     }
 }
 
-/// The pair check of `lower` against `higher` (same grid).
-fn pair(lower: &OasReport, higher: &OasReport) -> Option<PairRow> {
+/// The pair check of `lower` against `higher` (same grid), whose compared setting is `value`.
+fn pair(lower: &OasReport, higher: &OasReport, value: fn(&OasReport) -> f64) -> Option<PairRow> {
     if lower.sizes != higher.sizes || lower.levels.len() != higher.levels.len() {
         return None;
     }
@@ -127,8 +140,9 @@ fn pair(lower: &OasReport, higher: &OasReport) -> Option<PairRow> {
         record: lower.record.clone(),
         blocks: lower.blocks,
         impacts: lower.impacts,
-        lower: lower.slenderness,
-        higher: higher.slenderness,
+        slenderness: lower.slenderness,
+        lower: value(lower),
+        higher: value(higher),
         levels_compared: lower.levels.len(),
         violations,
         violations_beyond_one_cell: beyond,
@@ -136,25 +150,47 @@ fn pair(lower: &OasReport, higher: &OasReport) -> Option<PairRow> {
     })
 }
 
-fn slenderness_check(reports: &[OasReport]) -> SlendernessCheck {
-    let mut groups: BTreeMap<(String, usize, u32), Vec<&OasReport>> = BTreeMap::new();
+/// The setting a check compares, and the key of the spectra it compares (all else).
+struct Vary {
+    value: fn(&OasReport) -> f64,
+    key: fn(&OasReport) -> (String, u64, u64),
+}
+
+const SLENDERNESS: Vary = Vary {
+    value: |r| r.slenderness,
+    key: |r| (r.record.clone(), r.blocks as u64, u64::from(r.impacts)),
+};
+const BLOCKS: Vary = Vary {
+    value: |r| -(r.blocks as f64),
+    key: |r| {
+        (
+            r.record.clone(),
+            r.slenderness.to_bits(),
+            u64::from(r.impacts),
+        )
+    },
+};
+const IMPACTS: Vary = Vary {
+    value: |r| f64::from(r.impacts),
+    key: |r| (r.record.clone(), r.slenderness.to_bits(), r.blocks as u64),
+};
+
+fn check(reports: &[OasReport], vary: &Vary) -> Check {
+    let mut groups: BTreeMap<(String, u64, u64), Vec<&OasReport>> = BTreeMap::new();
     for r in reports {
-        groups
-            .entry((r.record.clone(), r.blocks, r.impacts))
-            .or_default()
-            .push(r);
+        groups.entry((vary.key)(r)).or_default().push(r);
     }
     let mut pairs = Vec::new();
     let (mut records, mut violating, mut violating_highest) = (0, 0, 0);
     let (mut violations, mut beyond, mut highest_count, mut compared) = (0, 0, 0, 0);
     for group in groups.values_mut() {
-        group.sort_by(|a, b| a.slenderness.total_cmp(&b.slenderness));
-        let top = group.last().map_or(0.0, |r| r.slenderness);
+        group.sort_by(|a, b| (vary.value)(a).total_cmp(&(vary.value)(b)));
+        let top = group.last().map_or(0.0, |r| (vary.value)(r));
         let before = pairs.len();
         for (i, lo) in group.iter().enumerate() {
             for hi in &group[i + 1..] {
-                if hi.slenderness > lo.slenderness {
-                    pairs.extend(pair(lo, hi));
+                if (vary.value)(hi) > (vary.value)(lo) {
+                    pairs.extend(pair(lo, hi, vary.value));
                 }
             }
         }
@@ -175,7 +211,7 @@ fn slenderness_check(reports: &[OasReport]) -> SlendernessCheck {
             .sum::<usize>();
         compared += new.iter().map(|p| p.levels_compared).sum::<usize>();
     }
-    SlendernessCheck {
+    Check {
         pairs,
         records,
         records_violating: violating,
@@ -286,7 +322,9 @@ pub fn run(files: &[PathBuf], svg: Option<&Path>, png: bool) -> Result<(), Strin
             .zip(&reports)
             .map(|(f, r)| spectrum_row(f, r))
             .collect(),
-        slenderness_check: slenderness_check(&reports),
+        slenderness_check: check(&reports, &SLENDERNESS),
+        blocks_check: check(&reports, &BLOCKS),
+        impacts_check: check(&reports, &IMPACTS),
     };
     print_json(&overlay)?;
     if let Some(prefix) = svg {
