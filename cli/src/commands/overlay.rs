@@ -270,7 +270,12 @@ fn charts(reports: &[OasReport]) -> Vec<(&'static str, Chart)> {
                     .iter()
                     .filter_map(|l| Some((x(l)?, l.level.level)))
                     .collect(),
-                style: Style::Line,
+                // Past the palette, the colours repeat dashed.
+                style: if k < COLORS.len() {
+                    Style::Line
+                } else {
+                    Style::Dashed
+                },
                 color: COLORS[k % COLORS.len()],
             })
             .collect::<Vec<_>>()
