@@ -175,3 +175,51 @@ fn t1_shards_merge_bitwise_to_the_whole() {
     let (whole, merged) = whole_and_merged("t1", &args, 2, "t1");
     assert_eq!(whole, merged);
 }
+
+/// `rocking oas --overlay`: two OAS of the bundled record for H/B = 5 and 12 on one chart, the
+/// table of both and the slenderness check of the pair, whose count is that of the levels where
+/// the H/B = 5 spectrum has the larger unsafe size (recounted here from the two reports).
+#[test]
+fn oas_overlay_compares_slenderness() {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("overlay");
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut files = Vec::new();
+    let mut reports = Vec::new();
+    for s in ["5", "12"] {
+        let mut args = vec!["oas", "examples/records/synthetic.AT2", "--slenderness", s];
+        args.extend(SMALL);
+        let (ok, out, err) = rocking(&args);
+        assert!(ok, "{err}");
+        let file = dir.join(format!("oas-{s}.json"));
+        std::fs::write(&file, &out).unwrap();
+        reports.push(serde_json::from_str::<serde_json::Value>(&out).unwrap());
+        files.push(file.to_str().unwrap().to_string());
+    }
+    let prefix = dir.join("fig45");
+    let mut args = vec!["oas", "--overlay"];
+    args.extend(files.iter().map(String::as_str));
+    args.extend(["--svg", prefix.to_str().unwrap()]);
+    let (ok, out, err) = rocking(&args);
+    assert!(ok, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["spectra"].as_array().unwrap().len(), 2);
+    let check = &v["slenderness_check"];
+    assert_eq!(check["records"], 1);
+    let pair = &check["pairs"][0];
+    assert_eq!(
+        (pair["lower"].as_f64(), pair["higher"].as_f64()),
+        (Some(5.0), Some(12.0))
+    );
+    let index = |r: &serde_json::Value, k: usize| {
+        r["levels"][k]["largest_unsafe"]
+            .as_u64()
+            .unwrap_or(u64::MAX)
+    };
+    let expected = (0..8)
+        .filter(|&k| index(&reports[0], k) < index(&reports[1], k))
+        .count();
+    assert_eq!(pair["violations"].as_u64(), Some(expected as u64));
+    assert_eq!(pair["levels_compared"], 8);
+    let svg = std::fs::read_to_string(dir.join("fig45-overlay.svg")).unwrap();
+    assert!(svg.contains("H/B = 5") && svg.contains("H/B = 12"));
+}

@@ -68,6 +68,10 @@ pub(crate) trait ChainDynamics: Equations {
     /// How fast `√E` can grow per unit ground acceleration when one rigid part rocks
     /// ([`super::StoppingOptions::stop_when_safe`]).
     fn energy_growth_bound(&self) -> f64;
+    /// `√(M/2)`, `M` the total mass: how fast `√E` can grow per unit ground acceleration
+    /// whatever moves, since the ground's power is `−a_g Σ m_j ẋ_j` and
+    /// `|Σ m_j ẋ_j| ≤ √(M Σ m_j ẋ_j²) ≤ √(2 M T)` ([`super::StoppingOptions::stop_when_safe_column`]).
+    fn column_growth_bound(&self) -> f64;
 
     /// Assembles the models' input (mass matrix, loads) at a state; the next four calls use it.
     fn assemble(&mut self, statuses: &[Status], ag: f64, phi: &[f64], rates: &[f64]);

@@ -512,6 +512,10 @@ impl ChainDynamics for ColumnDynamics<'_> {
             .fold(0.0, f64::max)
     }
 
+    fn column_growth_bound(&self) -> f64 {
+        (0.5 * self.masses.iter().sum::<f64>()).sqrt()
+    }
+
     fn assemble(&mut self, statuses: &[Status], ag: f64, phi: &[f64], rates: &[f64]) {
         let mut mass = std::mem::take(&mut self.system_mass);
         let mut load = std::mem::take(&mut self.system_load);

@@ -171,6 +171,18 @@ pub struct StoppingOptions {
     /// tip: a sliding or tension stop that the rest of the run would have met is not reported
     /// (sweeps use infinite friction).
     pub stop_when_safe: bool,
+    /// Columns of more than one block, with [`PhysicsOptions::exact_velocity_terms`] (whose
+    /// equations conserve `E = T + V` between events; impacts and settling only take energy
+    /// away): stop with [`super::StopReason::CannotTip`] when
+    /// `√E(t) + √(M/2) · ∫_t^∞ |a_g| ≤ 0.9 √E_tip`, `M` the total mass and `E_tip` the smallest
+    /// potential energy of a rigid tipping mechanism of the straight column. The growth is
+    /// proven (`|Σ m_j ẋ_j| ≤ √(2 M T)`); that no non-rigid path tips the column with less
+    /// potential energy than `E_tip`, and that `V ≥ 0` before tipping, is **not proven** (see
+    /// docs/spectra.md, "Early stop of columns"): opt-in, and checked against full runs by
+    /// `rocking bench spectra --compare`. Ignored without the exact velocity terms (thesis
+    /// Eq. 6 does not conserve energy when several interfaces are open) and with
+    /// `continue_until_fallen`.
+    pub stop_when_safe_column: bool,
 }
 
 impl Default for StoppingOptions {
@@ -183,6 +195,7 @@ impl Default for StoppingOptions {
             settle_interval: None,
             quiet_after: None,
             stop_when_safe: false,
+            stop_when_safe_column: false,
         }
     }
 }

@@ -274,6 +274,79 @@ fn oas_energy_bound_changes_nothing_on_shared_records() {
     }
 }
 
+/// The column's energy-bound stop ([`crate::driver::StoppingOptions::stop_when_safe_column`],
+/// exact Lagrangian equations) gives, at every point of a grid, the verdict of the whole run,
+/// for 2- and 3-block columns and 1 and 2 impacts on the bundled record; and it does stop runs
+/// (it is not vacuous). The bound is not proven for columns (docs/spectra.md): this is its
+/// check, with `rocking bench spectra --compare` on other records.
+#[test]
+fn column_energy_bound_changes_no_verdict() {
+    let record = bundled_record();
+    for (n_blocks, n_impacts) in [(2, 1), (2, 2), (3, 2)] {
+        let mut grid = OasOptions {
+            levels: linear_levels(1.0, 10.0, 6),
+            sizes: log_sizes(1000.0, 0.1, 16),
+            n_blocks,
+            ..OasOptions::default()
+        };
+        let sim = &mut grid.sweep.simulation;
+        sim.physics.model.n_impacts = n_impacts;
+        sim.physics.exact_velocity_terms = true;
+        sim.stopping.stop_when_safe_column = true;
+        let mut full = grid.clone();
+        full.sweep.simulation.stopping.stop_when_safe_column = false;
+        let (mut unsafe_points, mut stopped) = (0, 0);
+        for &level in &grid.levels {
+            for &size in &grid.sizes {
+                let bounded = point_run(&record, level, size, &grid).unwrap();
+                let whole = point_run(&record, level, size, &full).unwrap();
+                let verdict = |r: Option<PointRun>| r.is_some_and(|r| r.overturned);
+                assert_eq!(
+                    verdict(bounded),
+                    verdict(whole),
+                    "{n_blocks} blocks, {n_impacts} impacts: level {level}, R = {size}"
+                );
+                unsafe_points += usize::from(verdict(whole));
+                stopped += usize::from(
+                    bounded.is_some_and(|r| r.stop == crate::driver::StopReason::CannotTip),
+                );
+                // Without the bound no run of a column ends that way.
+                assert!(whole.is_none_or(|r| r.stop != crate::driver::StopReason::CannotTip));
+            }
+        }
+        let cells = grid.levels.len() * grid.sizes.len();
+        assert!(unsafe_points > 0 && unsafe_points < cells);
+        assert!(
+            stopped > 0,
+            "{n_blocks} blocks: the bound never stopped a run"
+        );
+    }
+}
+
+/// Thesis Eq. 6 (no velocity terms) does not conserve energy with several interfaces open:
+/// there the column bound is ignored.
+#[test]
+fn column_energy_bound_needs_the_exact_equations() {
+    let record = bundled_record();
+    let mut o = OasOptions {
+        n_blocks: 2,
+        ..small_grid()
+    };
+    o.sweep.simulation.stopping.stop_when_safe_column = true;
+    let stops = |o: &OasOptions| {
+        [1000.0, 100.0, 10.0]
+            .iter()
+            .filter(|&&size| {
+                let run = point_run(&record, 2.0, size, o).unwrap().unwrap();
+                run.stop == crate::driver::StopReason::CannotTip
+            })
+            .count()
+    };
+    assert_eq!(stops(&o), 0);
+    o.sweep.simulation.physics.exact_velocity_terms = true;
+    assert!(stops(&o) > 0);
+}
+
 #[test]
 fn invalid_options_name_the_field() {
     let record = bundled_record();

@@ -3,6 +3,7 @@
 pub mod design;
 pub mod oas;
 pub mod oc;
+pub mod overlay;
 pub mod simulate;
 pub mod simulate_drums;
 pub mod simulate_loop;

@@ -18,11 +18,18 @@ use crate::progress;
 #[derive(Args, Debug)]
 pub struct OasArgs {
     /// The record (.AT2 in g, or plain text in m/s²).
-    #[arg(required_unless_present = "merge")]
+    #[arg(required_unless_present_any = ["merge", "overlay"])]
     pub record: Option<PathBuf>,
     /// Rebuild the OAS from the JSON of `--shard` runs instead of computing it.
     #[arg(long, num_args = 1.., value_name = "SHARD.json", conflicts_with = "record")]
     pub merge: Vec<PathBuf>,
+    /// Compare stored OAS (the JSON of whole `rocking oas` runs) instead of computing one: a
+    /// table of each (unsafe cells, t1), the slenderness check (spectra of a record that differ
+    /// in H/B: the levels where the lower H/B has a larger unsafe size than the higher), and
+    /// with --svg one chart of all (PREFIX-overlay.svg against p, PREFIX-overlay-size.svg);
+    /// thesis Fig. 43 and 45.
+    #[arg(long, num_args = 1.., value_name = "OAS.json", conflicts_with_all = ["record", "merge"])]
+    pub overlay: Vec<PathBuf>,
     #[command(flatten)]
     pub grid: OasGridArgs,
     #[command(flatten)]
@@ -47,6 +54,9 @@ pub struct OasArgs {
 
 /// Runs the command.
 pub fn run(a: &OasArgs) -> Result<(), String> {
+    if !a.overlay.is_empty() {
+        return super::overlay::run(&a.overlay, a.svg.as_deref(), a.png);
+    }
     let t0 = Instant::now();
     let result = match &a.record {
         None => {

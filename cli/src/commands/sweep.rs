@@ -115,6 +115,15 @@ pub struct SimulationArgs {
     /// bound proves that the rest of the motion cannot tip it: the same verdicts, faster).
     #[arg(long = "full-runs")]
     pub full_runs: bool,
+    /// The exact Lagrangian equations of motion (thesis Eq. 6 plus the velocity terms), which
+    /// conserve energy between events.
+    #[arg(long)]
+    pub lagrangian: bool,
+    /// With --lagrangian, columns of several blocks: stop a run as soon as an energy bound says
+    /// the rest of the record cannot tip the column (UNPROVEN for columns, see docs/spectra.md,
+    /// "Early stop of columns"; check with `rocking bench spectra --compare`).
+    #[arg(long = "column-bound", requires = "lagrangian")]
+    pub column_bound: bool,
     /// Threads [default: every core]; the results do not depend on it.
     #[arg(long, value_parser = count)]
     pub threads: Option<usize>,
@@ -139,6 +148,8 @@ impl SimulationArgs {
         }
         // Same verdicts either way (tested); only for checking that claim, or timing it.
         s.simulation.stopping.stop_when_safe = !self.full_runs;
+        s.simulation.physics.exact_velocity_terms = self.lagrangian;
+        s.simulation.stopping.stop_when_safe_column = self.column_bound && !self.full_runs;
     }
 }
 

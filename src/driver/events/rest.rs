@@ -16,18 +16,30 @@ const SAFETY_EVERY: usize = 16;
 /// The energy bound of [`crate::driver::StoppingOptions::stop_when_safe`].
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct CannotTip {
-    /// `m R / √(2 I_P)`.
+    /// `m R / √(2 I_P)` (one block) or `√(M/2)` (a column).
     growth: f64,
     /// `0.9 √E_tip`.
     limit: f64,
 }
 
 impl CannotTip {
-    /// The bound when it applies (asked for, one block, static tipping).
+    /// The bound when it applies (static tipping; asked for: one block, or a column with the
+    /// exact velocity terms).
     pub fn new<C: ChainDynamics>(problem: &Problem<C>, n: usize, e_tip: f64) -> Option<CannotTip> {
         let stopping = &problem.opts.stopping;
-        (stopping.stop_when_safe && n == 1 && !stopping.continue_until_fallen).then(|| CannotTip {
-            growth: problem.chain.energy_growth_bound(),
+        if stopping.continue_until_fallen {
+            return None;
+        }
+        let growth = if n == 1 {
+            stopping
+                .stop_when_safe
+                .then(|| problem.chain.energy_growth_bound())
+        } else {
+            (stopping.stop_when_safe_column && problem.opts.physics.exact_velocity_terms)
+                .then(|| problem.chain.column_growth_bound())
+        }?;
+        Some(CannotTip {
+            growth,
             limit: SAFETY_FACTOR * e_tip.sqrt(),
         })
     }

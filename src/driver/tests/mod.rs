@@ -1,5 +1,6 @@
 //! Physics acceptance tests of the driver (thesis 3.3, 4.2, 4.3, Fig. 40; SPEC §5), by theme.
 
+mod barrier;
 mod checks;
 mod integrators;
 mod single_block;
