@@ -5,6 +5,8 @@ pub mod oas;
 pub mod oc;
 pub mod simulate;
 pub mod simulate_drums;
+pub mod suite;
+pub mod suite_charts;
 pub mod sweep;
 pub mod t1;
 pub mod thesis;
