@@ -303,6 +303,13 @@ mod tests {
                 .sum::<usize>();
             assert_eq!(v.checked, checked);
         }
+        // The fractile 1 is the largest unsafe size of every level: Eq. 21 with its t1 is
+        // conservative for every record.
+        let all = characteristic_oas(&suite, 1.0, "max").unwrap();
+        let design = (all.t1().unwrap(), all.fit());
+        assert!(design.0 >= a.t1().unwrap() && design.0 >= b.t1().unwrap());
+        let v = violations(&suite, |_| Some(design), None);
+        assert_eq!(v.eq21, Tally::default());
         let ranges = violations_in_stated_ranges(&suite, |_| Some((t1, None)));
         let bounds: Vec<Option<f64>> = ranges.iter().map(|v| v.level_below).collect();
         assert_eq!(bounds, vec![Some(4.0), Some(6.0), Some(12.0), None]);

@@ -91,6 +91,18 @@ pub fn charts(r: &SuiteReport) -> Vec<(&'static str, Chart)> {
         .flat_map(|o| o.levels.iter().filter_map(|l| l.f))
         .fold(1.0, f64::max)
         * 1.05;
+    // The region of interest: up to three times the largest f (p) of the lowest fractile's
+    // curve; the records' far-out points (small blocks at high levels) would squeeze it.
+    let cap = |of: fn(&rocking::spectra::report::LevelReport) -> Option<f64>| {
+        r.characteristic
+            .iter()
+            .flat_map(|c| c.oas.levels.iter().filter_map(of))
+            .fold(0.0, f64::max)
+            * 3.0
+    };
+    let (pcap, fcap) = (cap(|l| l.p), cap(|l| l.f));
+    let pmax = if pcap > 0.0 { pmax.min(pcap) } else { pmax };
+    let fmax = if fcap > 0.0 { fmax.min(fcap) } else { fmax };
     let sizes: Vec<f64> = first.map_or(Vec::new(), |o| o.sizes.clone());
     let (rmin, rmax) = sizes.iter().fold((f64::INFINITY, 0.0_f64), |(lo, hi), &s| {
         (lo.min(s), hi.max(s))
