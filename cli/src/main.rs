@@ -14,7 +14,7 @@ mod output;
 mod plot;
 mod progress;
 
-use commands::{design, oas, oc, simulate, t1, thesis, tp};
+use commands::{design, oas, oc, simulate, suite, t1, thesis, tp};
 
 /// The impact and opening models allocate a few small vectors per event, and sweeps of
 /// event-heavy records spent a quarter of their time in glibc's allocator; with mimalloc the OAS
@@ -56,6 +56,13 @@ enum Command {
     /// Replacement sine duration t_p of records (Eq. 25, Fig. 52): a_max, the largest
     /// single-lobe impulse I_max, t_p = I_max / (F a_max), F = 2/pi. No simulation.
     Tp(tp::TpArgs),
+    /// Site design curves of a record suite (5.3.1, Fig. 44, 47-49): every record's OAS, the
+    /// characteristic OAS and design t_1 at each fractile, the convex hulls of the transformed
+    /// OAS, and Eq. 21, 29, 30 checked against every record.
+    #[command(
+        override_usage = "rocking suite [OPTIONS] RECORD...\n       rocking suite --merge FILE.json... [--json] [--svg PREFIX] [--csv PREFIX]"
+    )]
+    Suite(suite::SuiteArgs),
     /// Pier width (Eq. 23, 24) and the Eq. 31 check.
     #[command(subcommand)]
     Design(design::Design),
@@ -73,6 +80,7 @@ fn main() -> ExitCode {
         Command::Oas(a) => oas::run(a),
         Command::T1(a) => t1::run(a),
         Command::Tp(a) => tp::run(a),
+        Command::Suite(a) => suite::run(a),
         Command::Design(d) => d.run(),
         Command::Bench(b) => b.run(),
     };

@@ -27,8 +27,11 @@
 //! columns of a size grid; `overturning_curve.rs` the OC of pulses; `oas.rs` the OAS of a record;
 //! `transformed.rs` its transformed form, `f_min`, `t_1`, the inclined fit and the conservative
 //! checks; `replacement_sine.rs` the replacement sine duration `t_p` of a record (Eq. 25);
-//! `statistics.rs` the fractile and the correlation of a record suite.
+//! `statistics.rs` the fractile and the correlation of a record suite; `suite.rs` the
+//! characteristic OAS of a suite, its design `t_1` and the check of the simplified spectra against
+//! every record; `hull.rs` the convex hull of a transformed OAS (Fig. 48–49).
 
+mod hull;
 mod oas;
 mod overturning_curve;
 mod point;
@@ -36,10 +39,12 @@ mod replacement_sine;
 #[cfg(feature = "serde")]
 pub mod report;
 pub mod statistics;
+pub mod suite;
 mod sweep;
 mod time_step;
 mod transformed;
 
+pub use hull::TransformedHull;
 pub use oas::{
     linear_levels, log_sizes, oas, record_overturns, Oas, OasLevel, OasOptions, OasPoint,
     SizeSearch,

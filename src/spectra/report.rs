@@ -4,7 +4,8 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::{Oas, OasLevel, Oc, SizeSearch};
+use super::suite::{characteristic_oas, violations_in_stated_ranges, Violations};
+use super::{statistics, Oas, OasLevel, Oc, SizeSearch, SpectraError, TransformedHull};
 
 /// One level of an OAS: the library's level and, when a size overturns, the largest unsafe one
 /// with its `p` and `f = p · level`.
@@ -133,6 +134,132 @@ impl OasReport {
             levels,
             gravity: first.gravity,
         })
+    }
+}
+
+/// One fractile of a record suite (`rocking suite`): the characteristic OAS, its transformed
+/// form's `f_min` and the suite's design `t_1`, and the simplified spectra with these parameters
+/// checked against every record.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct CharacteristicReport {
+    /// `q`.
+    pub fractile: f64,
+    /// The suite's design `t_1 = i_cr / f_min` of the characteristic transformed OAS [s].
+    pub design_t1: Option<f64>,
+    /// `f_min` of the characteristic transformed OAS [1/s].
+    pub f_min: Option<f64>,
+    /// For comparison: the `q`-fractile of the records' own `t_1` (thesis 5.3.4 designs with
+    /// the largest of the far-field set) [s].
+    pub record_t1_fractile: Option<f64>,
+    /// The characteristic OAS (its summary carries `t_1`, `t_1'`, `β` of Eq. 20, 28).
+    pub oas: OasReport,
+    /// Eq. 21, 29, 30 with the design `t_1` and the characteristic OAS's `t_1'`, `β`: boundary
+    /// points of the records predicted safe although they overturn, below 4, 6, 12 and at every
+    /// level.
+    pub violations: Vec<Violations>,
+}
+
+/// One vertex of a normalised convex hull.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct HullVertex {
+    pub level: f64,
+    /// `f` [1/s].
+    pub f: f64,
+    /// `f / f_min`.
+    pub f_normalised: f64,
+}
+
+/// The convex hull of one record's transformed OAS (Fig. 48b, 49).
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct HullReport {
+    pub record: String,
+    pub f_min: f64,
+    pub vertices: Vec<HullVertex>,
+}
+
+impl HullReport {
+    /// The hull of `o` (`None` when nothing overturns).
+    pub fn of(o: &Oas) -> Option<HullReport> {
+        let h = TransformedHull::of(o)?;
+        Some(HullReport {
+            record: o.record.clone(),
+            f_min: h.f_min,
+            vertices: h
+                .vertices
+                .iter()
+                .map(|&(level, f)| HullVertex {
+                    level,
+                    f,
+                    f_normalised: f / h.f_min,
+                })
+                .collect(),
+        })
+    }
+}
+
+/// The design curves of a record suite (`rocking suite --json`): every record's OAS, the
+/// characteristic OAS at each fractile, the normalised convex hulls, and the simplified spectra
+/// checked against the records with each record's own parameters (the thesis's claim, 5.3.5).
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct SuiteReport {
+    pub name: String,
+    /// Every record's OAS, by record name (what `--merge` reads back).
+    pub records: Vec<OasReport>,
+    pub characteristic: Vec<CharacteristicReport>,
+    pub hulls: Vec<HullReport>,
+    /// Eq. 21, 29, 30 with each record's own `t_1`, `t_1'`, `β`, below 4, 6, 12 and at every
+    /// level.
+    pub own_parameters: Vec<Violations>,
+    /// Sum of the records' wall times [s].
+    pub seconds: f64,
+}
+
+impl SuiteReport {
+    /// The report of the suite `name` of the spectra `records` (each with its wall time), at the
+    /// fractiles `fractiles`; records are sorted by name.
+    pub fn of(
+        name: &str,
+        records: &[(Oas, f64)],
+        fractiles: &[f64],
+    ) -> Result<SuiteReport, SpectraError> {
+        let mut records: Vec<&(Oas, f64)> = records.iter().collect();
+        records.sort_by(|a, b| a.0.record.cmp(&b.0.record));
+        let spectra: Vec<Oas> = records.iter().map(|r| r.0.clone()).collect();
+        let t1s: Vec<f64> = spectra.iter().filter_map(Oas::t1).collect();
+        let characteristic = fractiles
+            .iter()
+            .map(|&q| {
+                let c = characteristic_oas(&spectra, q, &format!("{name} characteristic {q}"))?;
+                let s = c.summary();
+                let design = s.t1.map(|t1| (t1, s.fit));
+                Ok(CharacteristicReport {
+                    fractile: q,
+                    design_t1: s.t1,
+                    f_min: s.f_min.map(|m| m.f),
+                    record_t1_fractile: statistics::fractile(&t1s, q),
+                    oas: OasReport::of(&c, 0.0),
+                    violations: violations_in_stated_ranges(&spectra, |_| design),
+                })
+            })
+            .collect::<Result<Vec<_>, SpectraError>>()?;
+        Ok(SuiteReport {
+            name: name.to_string(),
+            records: records.iter().map(|r| OasReport::of(&r.0, r.1)).collect(),
+            characteristic,
+            hulls: spectra.iter().filter_map(HullReport::of).collect(),
+            own_parameters: violations_in_stated_ranges(&spectra, |o| {
+                o.t1().map(|t1| (t1, o.fit()))
+            }),
+            seconds: records.iter().map(|r| r.1).sum(),
+        })
+    }
+
+    /// The records' spectra with their wall times, as read back from the report.
+    pub fn spectra(&self) -> Vec<(Oas, f64)> {
+        self.records
+            .iter()
+            .filter_map(|r| Some((OasReport::merge(vec![r.clone()])?, r.summary.seconds)))
+            .collect()
     }
 }
 

@@ -190,6 +190,48 @@ fn fit_is_a_supporting_line() {
     }
 }
 
+/// A fit through the origin (`t_1' = ∞`, the thesis's "~∞") passes through the boundary point
+/// that defines it; that point is on the line, so Eq. 29 and 30 predict it unsafe: no violation.
+/// (Solved for the level, Eq. 29's `p − 1/β` is zero at that point up to rounding, and its
+/// limit came out infinite for FF-33, Superstition Hills POE270.)
+#[test]
+fn a_point_on_a_fit_through_the_origin_is_not_a_violation() {
+    let levels = linear_levels(1.0, 10.0, 80);
+    let sizes = log_sizes(1000.0, 0.1, 120);
+    let mut on_the_line = 0;
+    for i in 0..sizes.len() {
+        // One unsafe size at the lowest level: the highest line at mid-range left of it is
+        // the line through the origin and that point.
+        let o = Oas {
+            record: "one point".into(),
+            slenderness: 12.0,
+            n_blocks: 1,
+            n_impacts: 1,
+            search: SizeSearch::Scan,
+            sizes: sizes.clone(),
+            levels: levels
+                .iter()
+                .enumerate()
+                .map(|(k, &level)| OasLevel {
+                    level,
+                    largest_unsafe: (k == 0).then_some(i),
+                    simulations: 1,
+                })
+                .collect(),
+            gravity: 9.81,
+        };
+        let s = o.summary();
+        let fit = s.fit.unwrap();
+        assert_eq!(fit.t1_prime, f64::INFINITY);
+        let c = o.check(s.t1.unwrap(), s.fit);
+        assert!(c.all_conservative(), "R = {}: {c:?}", sizes[i]);
+        let p = o.boundary()[0].p;
+        on_the_line += usize::from(p - 1.0 / fit.beta <= 0.0);
+    }
+    // The case the test is about occurs on this grid.
+    assert!(on_the_line > 0);
+}
+
 /// `t_1` of the bundled record with the default time step, half of it and a quarter of it
 /// (small grid). Overturning near the boundary is chaotic, so `t_1` (the single most vulnerable
 /// grid point) settles into a band rather than to digits: the three agree within 10 %

@@ -146,16 +146,17 @@ impl Oas {
                 out.eq21_approx.push(q);
             }
             if let Some(fit) = fit {
-                if violates(
-                    crate::design::improved_oas_eq29(q.p, fit.t1_prime, fit.beta),
-                    q.level,
-                ) {
+                // Eq. 29 predicts the point safe iff it is left of the inclined line of Eq. 28
+                // (the same as `level < improved_oas_eq29(p, ..)`, which solves the line for the
+                // level); compared in the transformed plane so that a point on a line through
+                // the origin, where `p − 1/β` is zero up to rounding, counts as on the line.
+                let left_of_line = q.f
+                    < crate::design::inclined_line(q.level, fit.t1_prime, fit.beta) * (1.0 - 1e-9);
+                if left_of_line {
                     out.eq29.push(q);
                 }
-                if violates(
-                    crate::design::improved_oas_eq30(q.p, t1, fit.t1_prime, fit.beta),
-                    q.level,
-                ) {
+                // Eq. 30: the larger of the vertical line (i_cr ≈ 1) and Eq. 29.
+                if left_of_line || violates(crate::design::simplified_oas(q.p, t1, 1.0), q.level) {
                     out.eq30.push(q);
                 }
             }

@@ -7,6 +7,8 @@ pub mod overlay;
 pub mod simulate;
 pub mod simulate_drums;
 pub mod simulate_loop;
+pub mod suite;
+pub mod suite_charts;
 pub mod sweep;
 pub mod t1;
 pub mod thesis;

@@ -225,6 +225,8 @@ impl Chart {
         let mut out: Vec<Entry> = self
             .series
             .iter()
+            // A series without a name shares the entry of another (many records, one entry).
+            .filter(|s| !s.name.is_empty())
             .map(|s| Entry {
                 name: s.name.clone(),
                 style: s.style,
