@@ -131,6 +131,17 @@ pub fn check_size(n: usize) -> Result<(), RockingError> {
     Ok(())
 }
 
+/// Checks that a vector over the DOFs has `2n` entries (`m = 2n`), naming it in the error.
+pub(crate) fn check_dof_vector(name: &str, values: &[f64], m: usize) -> Result<(), RockingError> {
+    if values.len() == m {
+        return Ok(());
+    }
+    Err(RockingError::new(
+        ErrorKind::InvalidSize,
+        format!("{name} has {} entries, expected 2n = {m}", values.len()),
+    ))
+}
+
 /// Checks that every value of `values` is finite.
 pub fn check_finite(name: &str, values: &[f64]) -> Result<(), RockingError> {
     match values.iter().position(|v| !v.is_finite()) {

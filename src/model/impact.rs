@@ -84,12 +84,7 @@ pub fn impact_model(
     let n = statuses.len();
     check_mass(n, mass)?;
     let m = 2 * n;
-    if velocity.len() != m {
-        return Err(RockingError::new(
-            ErrorKind::InvalidSize,
-            format!("velocity has {} entries, expected 2n = {m}", velocity.len()),
-        ));
-    }
+    configuration::check_dof_vector("velocity", velocity, m)?;
     configuration::check_finite("velocity", velocity)?;
     if closing >= n {
         return Err(RockingError::new(

@@ -8,12 +8,13 @@
 //! least constraint, so the current configuration is the answer exactly when its contact
 //! reactions are admissible: the eccentricity test, as reaction signs.
 
-use crate::error::{ErrorKind, RockingError};
+use crate::error::RockingError;
 use crate::model::cone::{ConeProblem, Generator, ModelOptions, ModelReport};
 use crate::model::configuration::{self, Status};
 use crate::model::impact::{check_mass, check_positive_definite};
 
-fn generators(statuses: &[Status]) -> Vec<Generator> {
+/// Open DOFs are free; each closed joint may open about either corner.
+pub(crate) fn generators(statuses: &[Status]) -> Vec<Generator> {
     let n = statuses.len();
     let mut gens = Vec::with_capacity(2 * n);
     for (j, s) in statuses.iter().enumerate() {
@@ -32,12 +33,7 @@ fn generators(statuses: &[Status]) -> Vec<Generator> {
 fn check_inputs(mass: &[f64], load: &[f64], statuses: &[Status]) -> Result<(), RockingError> {
     let n = statuses.len();
     check_mass(n, mass)?;
-    if load.len() != 2 * n {
-        return Err(RockingError::new(
-            ErrorKind::InvalidSize,
-            format!("load has {} entries, expected 2n = {}", load.len(), 2 * n),
-        ));
-    }
+    configuration::check_dof_vector("load", load, 2 * n)?;
     configuration::check_finite("load", load)?;
     check_positive_definite(mass, 2 * n)
 }
@@ -57,15 +53,7 @@ pub fn opening_model(
     check_inputs(mass, load, statuses)?;
     let n = statuses.len();
     let m = 2 * n;
-    if acceleration.len() != m {
-        return Err(RockingError::new(
-            ErrorKind::InvalidSize,
-            format!(
-                "acceleration has {} entries, expected 2n = {m}",
-                acceleration.len()
-            ),
-        ));
-    }
+    configuration::check_dof_vector("acceleration", acceleration, m)?;
     let problem = ConeProblem::new(generators(statuses), mass, m, load, options.tolerance)?;
     let sol = crate::model::solver::solve(&problem, options)?;
     let a = problem.dof_vector(&sol.y_hat, m);

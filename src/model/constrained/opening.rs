@@ -10,26 +10,11 @@
 //! Without constraints the problem is built and solved exactly as [`crate::opening_model`] does.
 
 use crate::error::{ErrorKind, RockingError};
-use crate::model::cone::{ConeProblem, Generator, ModelOptions, ModelReport};
+use crate::model::cone::{ConeProblem, ModelOptions, ModelReport};
 use crate::model::configuration::{self, Status};
 use crate::model::constrained::{check_constraints, problem::ConstrainedProblem, solve};
 use crate::model::impact::{check_mass, check_positive_definite};
-
-/// Open DOFs are free; each closed joint may open about either corner.
-fn generators(statuses: &[Status]) -> Vec<Generator> {
-    let n = statuses.len();
-    let mut gens = Vec::with_capacity(2 * n);
-    for (j, s) in statuses.iter().enumerate() {
-        match s.dof(j, n) {
-            Some(d) => gens.push(Generator::unit(d, 1.0, false, None)),
-            None => {
-                gens.push(Generator::unit(j, -1.0, true, Some(j)));
-                gens.push(Generator::unit(n + j, 1.0, true, Some(j)));
-            }
-        }
-    }
-    gens
-}
+use crate::model::opening::generators;
 
 /// Applies the opening model of a closed chain in place: `statuses` becomes the chosen
 /// configuration and `acceleration` (length `2n`) its DOF accelerations.
@@ -55,22 +40,9 @@ pub fn opening_model_constrained(
     let n = statuses.len();
     check_mass(n, mass)?;
     let m = 2 * n;
-    if load.len() != m {
-        return Err(RockingError::new(
-            ErrorKind::InvalidSize,
-            format!("load has {} entries, expected 2n = {m}", load.len()),
-        ));
-    }
+    configuration::check_dof_vector("load", load, m)?;
     configuration::check_finite("load", load)?;
-    if acceleration.len() != m {
-        return Err(RockingError::new(
-            ErrorKind::InvalidSize,
-            format!(
-                "acceleration has {} entries, expected 2n = {m}",
-                acceleration.len()
-            ),
-        ));
-    }
+    configuration::check_dof_vector("acceleration", acceleration, m)?;
     let nc = check_constraints(constraints, m)?;
     let zeros = vec![0.0; nc];
     let rhs = match constraint_rhs {
