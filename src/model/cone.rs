@@ -367,6 +367,66 @@ impl ConeProblem {
     }
 }
 
+/// Every face of a cone problem in the enumeration's order (thesis 3.2.2–3.2.3): a mixed-radix
+/// counter over the groups (closed, first corner, second corner: 3 choices) and the singles
+/// (closed or on: 2), the free generators always in the face.
+pub(crate) struct Faces<'a> {
+    cone: &'a ConeProblem,
+    free: Vec<usize>,
+    digits: Vec<u8>,
+    done: bool,
+}
+
+impl<'a> Faces<'a> {
+    pub(crate) fn new(cone: &'a ConeProblem) -> Self {
+        Faces {
+            cone,
+            free: (0..cone.p()).filter(|&i| !cone.gens[i].bounded).collect(),
+            digits: vec![0; cone.groups.len() + cone.singles.len()],
+            done: false,
+        }
+    }
+
+    /// Writes the next face into `set` (cleared first); false when every face has been given.
+    pub(crate) fn next_into(&mut self, set: &mut Vec<usize>) -> bool {
+        if self.done {
+            return false;
+        }
+        let groups = self.cone.groups.len();
+        set.clear();
+        set.extend_from_slice(&self.free);
+        for (u, &d) in self.digits.iter().enumerate() {
+            if d > 0 {
+                set.push(if u < groups {
+                    self.cone.groups[u][d as usize - 1]
+                } else {
+                    self.cone.singles[u - groups]
+                });
+            }
+        }
+        // Advance the counter; past the last face, stop.
+        self.done = true;
+        for (u, d) in self.digits.iter_mut().enumerate() {
+            *d += 1;
+            if *d < if u < groups { 3 } else { 2 } {
+                self.done = false;
+                break;
+            }
+            *d = 0;
+        }
+        true
+    }
+}
+
+/// `ŷ` of length `p` from the coefficients `x` of the face `set` (zero elsewhere).
+pub(crate) fn scatter(set: &[usize], x: &[f64], p: usize) -> Vec<f64> {
+    let mut y_hat = vec![0.0; p];
+    for (&i, &v) in set.iter().zip(x) {
+        y_hat[i] = v;
+    }
+    y_hat
+}
+
 /// The chosen face of a cone problem.
 pub(crate) struct ConeSolution {
     /// Scaled coefficients `ŷ` (length `p`, zero outside the face).

@@ -5,20 +5,12 @@
 //! that the projection solver is tested against.
 
 use crate::error::RockingError;
-use crate::model::cone::{ConeProblem, ConeSolution, Solver, TIE_GAP};
+use crate::model::cone::{scatter, ConeProblem, ConeSolution, Faces, Solver, TIE_GAP};
 
 /// Enumerates every configuration of the problem.
 pub(crate) fn solve(problem: &ConeProblem) -> Result<ConeSolution, RockingError> {
     let p = problem.p();
-    let free: Vec<usize> = (0..p).filter(|&i| !problem.gens[i].bounded).collect();
-    // Mixed-radix counter: groups have 3 choices (closed, first corner, second corner), singles 2.
-    let radices: Vec<u8> = problem
-        .groups
-        .iter()
-        .map(|_| 3u8)
-        .chain(problem.singles.iter().map(|_| 2u8))
-        .collect();
-    let mut digits = vec![0u8; radices.len()];
+    let mut faces = Faces::new(problem);
     let mut set: Vec<usize> = Vec::with_capacity(p);
     let mut work = Vec::with_capacity(p * p);
     let mut x = Vec::with_capacity(p);
@@ -28,18 +20,7 @@ pub(crate) fn solve(problem: &ConeProblem) -> Result<ConeSolution, RockingError>
     let mut best = [Best::default(), Best::default()];
     let mut examined = 0u64;
     let mut admissible = 0u64;
-    loop {
-        set.clear();
-        set.extend_from_slice(&free);
-        for (u, &d) in digits.iter().enumerate() {
-            if u < problem.groups.len() {
-                if d > 0 {
-                    set.push(problem.groups[u][d as usize - 1]);
-                }
-            } else if d > 0 {
-                set.push(problem.singles[u - problem.groups.len()]);
-            }
-        }
+    while faces.next_into(&mut set) {
         examined += 1;
         problem.solve_face(&set, &mut work, &mut x)?;
         let largest = problem.largest_rate(&set, &x);
@@ -56,44 +37,28 @@ pub(crate) fn solve(problem: &ConeProblem) -> Result<ConeSolution, RockingError>
                 best[0].offer(c, &set, &x, cond);
             }
         }
-        // Next configuration.
-        let mut u = 0;
-        loop {
-            if u == digits.len() {
-                let [stationary, any] = best;
-                let chosen = if stationary.face.is_some() {
-                    stationary
-                } else {
-                    any
-                };
-                let runner_up = chosen.runner_up;
-                let (criterion, set, x, condition) = chosen
-                    .face
-                    .expect("the all-closed configuration is always admissible");
-                let mut y_hat = vec![0.0; p];
-                for (&i, &v) in set.iter().zip(&x) {
-                    y_hat[i] = v;
-                }
-                let tie = !runner_up.is_nan() && runner_up >= criterion * (1.0 - TIE_GAP);
-                return Ok(ConeSolution {
-                    y_hat,
-                    criterion,
-                    runner_up,
-                    examined,
-                    admissible,
-                    tie,
-                    condition,
-                    solver: Solver::Enumerate,
-                });
-            }
-            digits[u] += 1;
-            if digits[u] < radices[u] {
-                break;
-            }
-            digits[u] = 0;
-            u += 1;
-        }
     }
+    let [stationary, any] = best;
+    let chosen = if stationary.face.is_some() {
+        stationary
+    } else {
+        any
+    };
+    let runner_up = chosen.runner_up;
+    let (criterion, set, x, condition) = chosen
+        .face
+        .expect("the all-closed configuration is always admissible");
+    let tie = !runner_up.is_nan() && runner_up >= criterion * (1.0 - TIE_GAP);
+    Ok(ConeSolution {
+        y_hat: scatter(&set, &x, p),
+        criterion,
+        runner_up,
+        examined,
+        admissible,
+        tie,
+        condition,
+        solver: Solver::Enumerate,
+    })
 }
 
 /// The best face seen so far and the runner-up's criterion.

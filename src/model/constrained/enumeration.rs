@@ -12,40 +12,21 @@
 //! round-off the report's `tie` flag says so.
 
 use crate::error::RockingError;
-use crate::model::cone::{ConeSolution, Solver, TIE_GAP};
+use crate::model::cone::{scatter, ConeSolution, Faces, Solver, TIE_GAP};
 use crate::model::constrained::problem::{ConstrainedProblem, FaceWork};
 
 /// Enumerates every configuration of the problem.
 pub(crate) fn solve(problem: &ConstrainedProblem) -> Result<ConeSolution, RockingError> {
     let cone = &problem.cone;
     let p = problem.p();
-    let free: Vec<usize> = (0..p).filter(|&i| !cone.gens[i].bounded).collect();
     let rows: Vec<usize> = (0..problem.nc).collect();
-    let radices: Vec<u8> = cone
-        .groups
-        .iter()
-        .map(|_| 3u8)
-        .chain(cone.singles.iter().map(|_| 2u8))
-        .collect();
-    let mut digits = vec![0u8; radices.len()];
+    let mut faces = Faces::new(cone);
     let mut set: Vec<usize> = Vec::with_capacity(p);
     let mut ws = FaceWork::default();
     let mut best: Option<(f64, Vec<usize>, Vec<f64>, f64)> = None;
     let mut runner_up = f64::NAN;
     let (mut examined, mut admissible) = (0u64, 0u64);
-    loop {
-        set.clear();
-        set.extend_from_slice(&free);
-        for (u, &d) in digits.iter().enumerate() {
-            if d == 0 {
-                continue;
-            }
-            if u < cone.groups.len() {
-                set.push(cone.groups[u][d as usize - 1]);
-            } else {
-                set.push(cone.singles[u - cone.groups.len()]);
-            }
-        }
+    while faces.next_into(&mut set) {
         examined += 1;
         if let Some(info) = problem.solve_face(&set, &rows, &mut ws)? {
             let largest = cone.largest_rate(&set, &ws.y);
@@ -71,35 +52,18 @@ pub(crate) fn solve(problem: &ConstrainedProblem) -> Result<ConeSolution, Rockin
                 }
             }
         }
-        let mut u = 0;
-        loop {
-            if u == digits.len() {
-                let (criterion, set, x, condition) = best.expect(
-                    "the configuration that opens nothing satisfies the constraints (checked)",
-                );
-                let mut y_hat = vec![0.0; p];
-                for (&i, &v) in set.iter().zip(&x) {
-                    y_hat[i] = v;
-                }
-                let tie = !runner_up.is_nan()
-                    && runner_up >= criterion - TIE_GAP * criterion.abs().max(1e-300);
-                return Ok(ConeSolution {
-                    y_hat,
-                    criterion,
-                    runner_up,
-                    examined,
-                    admissible,
-                    tie,
-                    condition,
-                    solver: Solver::Enumerate,
-                });
-            }
-            digits[u] += 1;
-            if digits[u] < radices[u] {
-                break;
-            }
-            digits[u] = 0;
-            u += 1;
-        }
     }
+    let (criterion, set, x, condition) =
+        best.expect("the configuration that opens nothing satisfies the constraints (checked)");
+    let tie = !runner_up.is_nan() && runner_up >= criterion - TIE_GAP * criterion.abs().max(1e-300);
+    Ok(ConeSolution {
+        y_hat: scatter(&set, &x, p),
+        criterion,
+        runner_up,
+        examined,
+        admissible,
+        tie,
+        condition,
+        solver: Solver::Enumerate,
+    })
 }
