@@ -4,6 +4,10 @@
 //! - opening with the four-hinge collapse mechanism moving (17 closed joints, `G a = −Ġ v`);
 //! - impact of that mechanism swinging back, its four hinges closing together.
 //!
+//! The opening from rest and the impact also through the C ABI
+//! (`rocking_opening_model_constrained`, `rocking_impact_model_constrained`: copies, checks and
+//! all).
+//!
 //! `cargo bench --bench arches` (issue 15: under 1 ms through the C ABI).
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
@@ -185,6 +189,57 @@ fn arches(c: &mut Criterion) {
                 &opts,
             )
             .unwrap()
+        })
+    });
+    let m = 2 * nj;
+    let c_opts = rocking::ffi::RockingOptions {
+        n_impacts: 1,
+        solver: rocking::ffi::ROCKING_SOLVER_PROJECTION,
+        tolerance: 1e-12,
+    };
+    group.bench_function("C ABI: opening from rest", |b| {
+        b.iter(|| {
+            let mut st = vec![0i8; nj];
+            let mut a = vec![0.0; m];
+            let code = unsafe {
+                rocking::ffi::rocking_opening_model_constrained(
+                    nj,
+                    black_box(case.mass.as_ptr()),
+                    case.load.as_ptr(),
+                    3,
+                    case.g.as_ptr(),
+                    std::ptr::null(),
+                    st.as_mut_ptr(),
+                    a.as_mut_ptr(),
+                    &c_opts,
+                    std::ptr::null_mut(),
+                )
+            };
+            assert_eq!(code, 0);
+            a
+        })
+    });
+    let c_mechanism: Vec<i8> = case.mechanism.iter().map(|s| s.as_i8()).collect();
+    let c_closing: Vec<u8> = closing.iter().map(|&f| u8::from(f)).collect();
+    group.bench_function("C ABI: impact, four hinges closing", |b| {
+        b.iter(|| {
+            let mut st = c_mechanism.clone();
+            let mut v = back.clone();
+            let code = unsafe {
+                rocking::ffi::rocking_impact_model_constrained(
+                    nj,
+                    black_box(case.mass.as_ptr()),
+                    3,
+                    case.g.as_ptr(),
+                    st.as_mut_ptr(),
+                    v.as_mut_ptr(),
+                    c_closing.as_ptr(),
+                    &c_opts,
+                    std::ptr::null_mut(),
+                )
+            };
+            assert_eq!(code, 0);
+            v
         })
     });
     group.finish();

@@ -162,6 +162,12 @@
 #define ROCKING_SOLVER_PROJECTION 2
 
 /**
+ * Largest `n_constraints` the constrained models accept, `3 × ROCKING_MAX_INTERFACES` (a loop
+ * has 3).
+ */
+#define ROCKING_MAX_CONSTRAINTS 12288
+
+/**
  * Options of both models. Passing NULL means `{1, ROCKING_SOLVER_AUTO, 1e-12}`.
  */
 typedef struct RockingOptions {
@@ -229,6 +235,22 @@ typedef struct RockingReport {
    */
   double condition_estimate;
 } RockingReport;
+
+/**
+ * A voussoir arch (SPEC §9): circular centre line of radius `radius`, thickness `thickness`
+ * (radial joints), angle of embrace `embrace_angle` (rad; π is the semicircular arch),
+ * `voussoirs` voussoirs of equal angle on rigid abutments, uniform `density` (kg/m³) and
+ * out-of-plane `depth` (m). Joint 0 is the left springing, joint `voussoirs` the right one;
+ * `phĭ_k` turns about the intrados corner, `phî_k` about the extrados corner.
+ */
+typedef struct RockingArch {
+  double radius;
+  double thickness;
+  double embrace_angle;
+  size_t voussoirs;
+  double density;
+  double depth;
+} RockingArch;
 
 #ifdef __cplusplus
 extern "C" {
@@ -368,6 +390,132 @@ const char *rocking_version(void);
  * ABI version; compare with `ROCKING_ABI_VERSION` of the header you compiled against.
  */
 uint32_t rocking_abi_version(void);
+
+/**
+ * Impact model of a closed chain (SPEC §9): every interface flagged in `closing` closes at this
+ * instant (a four-hinge loop closes its four hinges together); each may stay closed or rotate on
+ * about its opposite corner, every other closed interface may stay closed or open either way,
+ * open interfaces keep their DOF; the velocities after satisfy `G v⁺ = 0`.
+ *
+ * - `mass`: 2n×2n (symmetric; for a loop only positive semi-definite: the cut joint's rows are
+ *   zero), DOF order as `rocking_impact_model`;
+ * - `constraints`: `G`, row-major `n_constraints × 2n` (NULL allowed when `n_constraints` is 0);
+ * - `status`, `velocity`: as `rocking_impact_model` (read and written);
+ * - `closing`: n flags, 1 for every open interface that closes now (its DOF at rest or moving
+ *   towards zero), else 0.
+ *
+ * `n_constraints = 0` with one flag gives exactly the answers of `rocking_impact_model`. The
+ * mass matrix must be positive definite on the null space of the constraints restricted to the
+ * DOFs of every configuration examined, else `ROCKING_ERR_NOT_POSITIVE_DEFINITE`. Returns 0, a
+ * negative code for a bad call, or a positive code if it cannot be solved; on a non-zero return
+ * nothing is written.
+ *
+ * # Safety
+ * Non-NULL pointers must point to arrays of the documented sizes.
+ */
+int32_t rocking_impact_model_constrained(size_t n_interfaces,
+                                         const double *mass,
+                                         size_t n_constraints,
+                                         const double *constraints,
+                                         int8_t *status,
+                                         double *velocity,
+                                         const uint8_t *closing,
+                                         const struct RockingOptions *options,
+                                         struct RockingReport *report);
+
+/**
+ * Opening model of a closed chain (SPEC §9): `a = argmin ½ aᵀMa − aᵀq` over `G a = r` and the
+ * cone of the opening model (Gauss's principle of least constraint). A closed loop has no
+ * reaction test: the model itself answers — from rest it returns `a ≠ 0` exactly when some
+ * admissible mechanism has positive power of the loads (limit analysis). With interfaces already
+ * open, "nothing new opens" is a candidate: then `report->changed` is 0 and `acceleration` holds
+ * the current mechanism's accelerations.
+ *
+ * - `mass`, `load`: 2n×2n and 2n, as `rocking_opening_model` (`mass` may be singular on the
+ *   cut joint of a loop);
+ * - `constraints`: `G`, row-major `n_constraints × 2n` (NULL allowed when `n_constraints` is 0);
+ * - `constraint_rhs`: `r` (n_constraints values, `−Ġ v` for a moving loop), or NULL for zeros;
+ * - `status`: n values, read and written; `acceleration`: 2n, written.
+ *
+ * `n_constraints = 0` gives exactly the answers of `rocking_opening_model`.
+ *
+ * # Safety
+ * Non-NULL pointers must point to arrays of the documented sizes.
+ */
+int32_t rocking_opening_model_constrained(size_t n_interfaces,
+                                          const double *mass,
+                                          const double *load,
+                                          size_t n_constraints,
+                                          const double *constraints,
+                                          const double *constraint_rhs,
+                                          int8_t *status,
+                                          double *acceleration,
+                                          const struct RockingOptions *options,
+                                          struct RockingReport *report);
+
+/**
+ * `M`, `q`, `G` and `Ġ v` of a voussoir arch (SPEC §9) at the joint angles `phi` and rates
+ * `rates`, for the two constrained models: an FE code or a test gets the loop's system without
+ * assembling it.
+ *
+ * - `arch`: the geometry; `n_interfaces` must be `arch->voussoirs + 1` (the joints: it states
+ *   the sizes of the arrays);
+ * - `phi`: 2n DOF angles (at most one non-zero per joint, admissible sign), or NULL for the
+ *   arch at rest; `rates`: 2n DOF rates (on the open DOFs; a closed joint may have one DOF moving
+ *   the admissible way), or NULL for zero;
+ * - `ground_acceleration` (m/s², +x right) and `gravity` (m/s², positive);
+ * - `mass`: 4n² (symmetric; the last joint's rows and columns are zero: the chain is cut
+ *   there); `load`: 2n, or NULL; `constraints`: `G`, 3 × 2n row-major, or NULL;
+ *   `constraint_rate`: `Ġ v` (3; the accelerations obey `G a = −Ġ v`), or NULL.
+ *
+ * # Safety
+ * Non-NULL pointers must point to arrays of the documented sizes.
+ */
+int32_t rocking_arch_system(const struct RockingArch *arch,
+                            size_t n_interfaces,
+                            const double *phi,
+                            const double *rates,
+                            double ground_acceleration,
+                            double gravity,
+                            double *mass,
+                            double *load,
+                            double *constraints,
+                            double *constraint_rate);
+
+/**
+ * `M`, `q`, `G` and `Ġ v` of a capped colonnade (SPEC §9: ground → left column → beam → right
+ * column → ground; Makris & Vassiliou's frame with one block per column) at the joint angles
+ * `phi` and rates `rates`.
+ *
+ * - `left`, `right`: `n_left` and `n_right` rows `(width, height, mass)` of each column's
+ *   blocks, bottom to top (uniform rectangles bearing on their full width); the columns stand at
+ *   `x = 0` and `x = span` and must be equally tall; `beam`: `(length, depth, mass)`, centred
+ *   between them, covering both column tops;
+ * - `n_interfaces` must be `n_left + n_right + 2` (it states the sizes of the arrays). Joint
+ *   order: the left column bottom to top (`k = 0 … n_left − 1`), the left top under the beam
+ *   (`n_left`), the beam on the right top (`n_left + 1`), the right column top to bottom; on
+ *   the right column the joint normals point down, so `phĭ_k` turns about the corner on the
+ *   left in world coordinates;
+ * - `phi`, `rates`, `ground_acceleration`, `gravity` and the outputs as `rocking_arch_system`.
+ *
+ * # Safety
+ * Non-NULL pointers must point to arrays of the documented sizes.
+ */
+int32_t rocking_colonnade_system(size_t n_left,
+                                 const double *left,
+                                 size_t n_right,
+                                 const double *right,
+                                 const double *beam,
+                                 double span,
+                                 size_t n_interfaces,
+                                 const double *phi,
+                                 const double *rates,
+                                 double ground_acceleration,
+                                 double gravity,
+                                 double *mass,
+                                 double *load,
+                                 double *constraints,
+                                 double *constraint_rate);
 
 #ifdef __cplusplus
 }  /* extern "C" */

@@ -11,6 +11,7 @@
 #![allow(clippy::needless_range_loop)]
 
 pub mod chain;
+pub mod contact;
 pub mod design;
 pub mod driver;
 pub mod error;

@@ -6,7 +6,7 @@
 //! turns back within the next step: the linear locator put the crossing at the start of that
 //! step, the same instant, and the impact routine treated the DOF as grazing and zeroed its rate
 //! alone — not a projection in the kinetic metric, so the energy could rise (up to 6× on ten
-//! 1 × 1 m drums under MUL009 at 4.9 m/s²). See docs/driver.md, "Events at one instant".
+//! 1 × 1 m drums under MUL009 at 4.9 m/s²). See docs/robustness.md, "Events at one instant".
 
 use std::path::Path;
 

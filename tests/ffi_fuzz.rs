@@ -27,6 +27,13 @@ const CODES: &[i32] = &[
     ROCKING_ERR_OVERFLOW,
 ];
 
+/// The codes of the loop system helpers: those of the models and the geometry's.
+fn helper_code(code: i32) -> bool {
+    CODES.contains(&code)
+        || code == ROCKING_ERR_INVALID_GEOMETRY
+        || code == ROCKING_ERR_INVALID_ANGLES
+}
+
 /// A float that is often ordinary, sometimes special.
 fn value() -> impl Strategy<Value = f64> {
     prop_oneof![
@@ -229,6 +236,44 @@ fn overflowing_sizes_are_refused_before_reading() {
             )
         };
         assert_eq!(code, ROCKING_ERR_INVALID_SIZE, "n = {n}");
+        let code = unsafe {
+            rocking_opening_model_constrained(
+                n,
+                tiny.as_ptr(),
+                tiny.as_ptr(),
+                0,
+                std::ptr::null(),
+                std::ptr::null(),
+                st.as_mut_ptr(),
+                v.as_mut_ptr(),
+                std::ptr::null(),
+                std::ptr::null_mut(),
+            )
+        };
+        assert_eq!(code, ROCKING_ERR_INVALID_SIZE, "n = {n}");
+    }
+    // Constraint counts whose arrays would overflow, with a valid n.
+    let flags = [1u8; 1];
+    for nc in [
+        usize::MAX,
+        usize::MAX / 2 + 1,
+        1 << 62,
+        ROCKING_MAX_CONSTRAINTS + 1,
+    ] {
+        let code = unsafe {
+            rocking_impact_model_constrained(
+                1,
+                tiny.as_ptr(),
+                nc,
+                tiny.as_ptr(),
+                st.as_mut_ptr(),
+                v.as_mut_ptr(),
+                flags.as_ptr(),
+                std::ptr::null(),
+                std::ptr::null_mut(),
+            )
+        };
+        assert_eq!(code, ROCKING_ERR_INVALID_SIZE, "n_constraints = {nc}");
     }
     let mut out = [0.0f64; 1];
     for (a, b) in [(usize::MAX, 1), (1, usize::MAX), (1 << 40, 1 << 40), (0, 1)] {
@@ -244,5 +289,271 @@ fn overflowing_sizes_are_refused_before_reading() {
             )
         };
         assert_eq!(code, ROCKING_ERR_INVALID_SIZE);
+    }
+}
+
+/// A call of the constrained models: a real arch's `M` and `G` (from `rocking_arch_system`, so the
+/// models run on a consistent loop), the same perturbed, or random matrices with 0 to 4 random
+/// constraint rows; random statuses, rates, closing flags (sometimes not 0/1), a right-hand side
+/// or NULL.
+#[derive(Debug, Clone)]
+struct LoopCall {
+    n: usize,
+    mass: Vec<f64>,
+    load: Vec<f64>,
+    nc: usize,
+    constraints: Vec<f64>,
+    rhs: Option<Vec<f64>>,
+    status: Vec<i8>,
+    velocity: Vec<f64>,
+    closing: Vec<u8>,
+    options: Option<RockingOptions>,
+}
+
+fn loop_call() -> impl Strategy<Value = LoopCall> {
+    (3usize..=5)
+        .prop_flat_map(|voussoirs| {
+            let n = voussoirs + 1;
+            let m = 2 * n;
+            (
+                Just(voussoirs),
+                0u8..4,
+                0usize..=4,
+                prop::collection::vec(value(), m * m),
+                prop::collection::vec(value(), 5 * m + 4),
+                prop::collection::vec(prop_oneof![6 => -1i8..=1, 1 => any::<i8>()], n),
+                prop::collection::vec(prop_oneof![3 => Just(0.0), 2 => value()], m),
+                prop::collection::vec(
+                    prop_oneof![4 => Just(0u8), 2 => Just(1u8), 1 => any::<u8>()],
+                    n,
+                ),
+                prop::option::of((0u32..4, 0u32..4, prop_oneof![Just(1e-12), value()])),
+                (0.08f64..0.4, -4.0f64..4.0, any::<bool>(), any::<bool>()),
+            )
+        })
+        .prop_map(
+            |(
+                voussoirs,
+                kind,
+                nc_random,
+                raw,
+                raw_g,
+                status,
+                velocity,
+                closing,
+                options,
+                (t, ag, with_rhs, coherent),
+            )| {
+                let n = voussoirs + 1;
+                let m = 2 * n;
+                let (mass, load, nc, constraints) = if kind <= 1 {
+                    let arch = RockingArch {
+                        radius: 1.0,
+                        thickness: t,
+                        embrace_angle: std::f64::consts::PI,
+                        voussoirs,
+                        density: 2000.0,
+                        depth: 1.0,
+                    };
+                    let (mut mm, mut q, mut g) = (vec![0.0; m * m], vec![0.0; m], vec![0.0; 3 * m]);
+                    let code = unsafe {
+                        rocking_arch_system(
+                            &arch,
+                            n,
+                            std::ptr::null(),
+                            std::ptr::null(),
+                            ag,
+                            9.81,
+                            mm.as_mut_ptr(),
+                            q.as_mut_ptr(),
+                            g.as_mut_ptr(),
+                            std::ptr::null_mut(),
+                        )
+                    };
+                    assert_eq!(code, ROCKING_OK);
+                    if kind == 1 {
+                        mm[(raw.len() - 1) % (m * m)] = raw[0];
+                    }
+                    (mm, q, 3, g)
+                } else {
+                    let mut mm = raw.clone();
+                    if kind == 2 {
+                        for r in 0..m {
+                            for c in 0..r {
+                                mm[r * m + c] = mm[c * m + r];
+                            }
+                        }
+                    }
+                    (
+                        mm,
+                        raw_g[..m].to_vec(),
+                        nc_random,
+                        raw_g[m..m + nc_random * m].to_vec(),
+                    )
+                };
+                let rhs = with_rhs.then(|| raw_g[5 * m..5 * m + nc].to_vec());
+                // Half the real arches start coherent: the mechanism that opens from rest under
+                // their load, swinging back (the four hinges close together).
+                let (mut status, mut velocity, mut closing) = (status, velocity, closing);
+                if kind == 0 && coherent {
+                    let (mut st, mut acc) = (vec![0i8; n], vec![0.0; m]);
+                    let code = unsafe {
+                        rocking_opening_model_constrained(
+                            n,
+                            mass.as_ptr(),
+                            load.as_ptr(),
+                            3,
+                            constraints.as_ptr(),
+                            std::ptr::null(),
+                            st.as_mut_ptr(),
+                            acc.as_mut_ptr(),
+                            std::ptr::null(),
+                            std::ptr::null_mut(),
+                        )
+                    };
+                    if code == ROCKING_OK && st.iter().any(|&s| s != 0) {
+                        closing = st.iter().map(|&s| u8::from(s != 0)).collect();
+                        velocity = acc.iter().map(|a| -a).collect();
+                        status = st;
+                    }
+                }
+                LoopCall {
+                    n,
+                    mass,
+                    load,
+                    nc,
+                    constraints,
+                    rhs,
+                    status,
+                    velocity,
+                    closing,
+                    options: options.map(|(n_impacts, solver, tolerance)| RockingOptions {
+                        n_impacts,
+                        solver,
+                        tolerance,
+                    }),
+                }
+            },
+        )
+}
+
+/// `|G x − r|` over the rows, relative to the size of `G` and `x`.
+fn closure_residual(c: &LoopCall, x: &[f64], rhs: &[f64]) -> f64 {
+    let m = 2 * c.n;
+    let xs = x.iter().fold(1.0f64, |s, v| s.max(v.abs()));
+    (0..c.nc)
+        .map(|row| {
+            let g = &c.constraints[row * m..(row + 1) * m];
+            let gs = g.iter().fold(0.0f64, |s, v| s.max(v.abs()));
+            let gx: f64 = g.iter().zip(x).map(|(a, b)| a * b).sum();
+            (gx - rhs[row]).abs() / (gs * xs).max(1e-300)
+        })
+        .fold(0.0, f64::max)
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig {
+        cases: std::env::var("PROPTEST_CASES").ok().and_then(|v| v.parse().ok()).unwrap_or(3000),
+        ..ProptestConfig::default()
+    })]
+
+    #[test]
+    fn constrained_impact_answers_every_input(c in loop_call()) {
+        let mut status = c.status.clone();
+        let mut velocity = c.velocity.clone();
+        let mut report = std::mem::MaybeUninit::<RockingReport>::zeroed();
+        let opts = c.options.as_ref().map_or(std::ptr::null(), |o| o as *const RockingOptions);
+        let gp = if c.nc == 0 { std::ptr::null() } else {
+            c.constraints.as_ptr() };
+        let code = unsafe {
+            rocking_impact_model_constrained(c.n, c.mass.as_ptr(), c.nc, gp, status.as_mut_ptr(), velocity.as_mut_ptr(), c.closing.as_ptr(), opts, report.as_mut_ptr())
+        };
+        prop_assert!(CODES.contains(&code), "undefined code {}", code);
+        if code != 0 {
+            prop_assert_eq!(&status, &c.status);
+            prop_assert!(velocity.iter().zip(&c.velocity).all(|(a, b)| a.to_bits() == b.to_bits()));
+        } else {
+            prop_assert!(status.iter().all(|s| (-1..=1).contains(s)));
+            prop_assert!(velocity.iter().all(|v| v.is_finite()));
+            let report = unsafe { report.assume_init() };
+            prop_assert!(report.kinetic_after <= report.kinetic_before * (1.0 + 1e-9) + 1e-300);
+            let r = closure_residual(&c, &velocity, &[0.0; 4]);
+            prop_assert!(r < 1e-8, "closure after the impact: {}", r);
+        }
+    }
+
+    #[test]
+    fn constrained_opening_answers_every_input(c in loop_call()) {
+        let mut status = c.status.clone();
+        let mut acc = vec![7.0; 2 * c.n];
+        let opts = c.options.as_ref().map_or(std::ptr::null(), |o| o as *const RockingOptions);
+        let gp = if c.nc == 0 { std::ptr::null() } else {
+            c.constraints.as_ptr() };
+        let rp = c.rhs.as_ref().map_or(std::ptr::null(), |r| r.as_ptr());
+        let code = unsafe {
+            rocking_opening_model_constrained(c.n, c.mass.as_ptr(), c.load.as_ptr(), c.nc, gp, rp, status.as_mut_ptr(), acc.as_mut_ptr(), opts, std::ptr::null_mut())
+        };
+        prop_assert!(CODES.contains(&code), "undefined code {}", code);
+        if code != 0 {
+            prop_assert_eq!(&status, &c.status);
+            prop_assert!(acc.iter().all(|&a| a == 7.0));
+        } else {
+            prop_assert!(status.iter().all(|s| (-1..=1).contains(s)));
+            prop_assert!(acc.iter().all(|a| a.is_finite()));
+            // Accelerations only on the DOFs of the chosen configuration.
+            for (i, a) in acc.iter().enumerate() {
+                let k = i % c.n;
+                let active = match status[k] { -1 => k, 1 => c.n + k, _ => usize::MAX };
+                prop_assert!(*a == 0.0 || i == active);
+            }
+        }
+    }
+
+    #[test]
+    fn loop_system_helpers_answer_every_input(
+        fields in prop::collection::vec(value(), 6),
+        voussoirs in prop_oneof![4 => 1usize..6, 1 => any::<usize>()],
+        n in 0usize..8,
+        phi in prop::collection::vec(prop_oneof![3 => Just(0.0), 1 => value()], 16),
+        rows in prop::collection::vec(value(), 12),
+        split in 0usize..3,
+        g in value(),
+        ag in value(),
+    ) {
+        let arch = RockingArch {
+            radius: fields[0],
+            thickness: fields[1],
+            embrace_angle: fields[2],
+            voussoirs,
+            density: fields[3],
+            depth: fields[4],
+        };
+        let m = 2 * n;
+        let mut out = vec![3.0; m * m];
+        let mut load = vec![3.0; m];
+        let mut gout = vec![3.0; 3 * m];
+        let mut gdot = [3.0; 3];
+        let code = unsafe {
+            rocking_arch_system(&arch, n, phi.as_ptr(), phi.as_ptr(), ag, g, out.as_mut_ptr(), load.as_mut_ptr(), gout.as_mut_ptr(), gdot.as_mut_ptr())
+        };
+        prop_assert!(helper_code(code), "undefined code {}", code);
+        let untouched = out.iter().chain(&load).chain(&gout).chain(&gdot).all(|&x| x == 3.0);
+        if code != 0 {
+            prop_assert!(untouched);
+        } else {
+            prop_assert!(out.iter().chain(&load).chain(&gout).chain(&gdot).all(|x| x.is_finite()));
+        }
+        // Colonnade: `split` blocks on the left, the rest (of at most 2) on the right.
+        let (n_left, n_right) = (split.min(2), 2usize.saturating_sub(split).max(usize::from(split == 2)));
+        let mut out = vec![3.0; m * m];
+        let code = unsafe {
+            rocking_colonnade_system(n_left, rows.as_ptr(), n_right, rows[6..].as_ptr(), rows[9..].as_ptr(), fields[5], n, phi.as_ptr(), std::ptr::null(), ag, g, out.as_mut_ptr(), std::ptr::null_mut(), std::ptr::null_mut(), std::ptr::null_mut())
+        };
+        prop_assert!(helper_code(code), "undefined code {}", code);
+        if code != 0 {
+            prop_assert!(out.iter().all(|&x| x == 3.0));
+        } else {
+            prop_assert!(out.iter().all(|x| x.is_finite()));
+        }
     }
 }

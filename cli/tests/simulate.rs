@@ -123,3 +123,84 @@ fn a_bad_scene_fails_naming_the_field_and_writes_nothing() {
     let run = simulate(&scene, &out, None);
     assert!(run.stderr.contains("unknown field `speed`"));
 }
+
+#[test]
+fn a_drum_scene_rocks_slides_and_flies_and_writes_slips() {
+    // Five 1 x 1 m drums, μ = 0.5, `on_sliding: "slide"`, `on_tension: "fly"`: the contact scheme.
+    let out = fresh_dir("drums_sliding_column");
+    let plot = out.join("plot.svg");
+    let run = simulate(
+        &scenes().join("drums_sliding_column.json"),
+        &out,
+        Some(&plot),
+    );
+    assert!(run.ok, "{}", run.stderr);
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["scheme"], "moreau");
+    assert_eq!(summary["stop_reason"], "duration", "{summary}");
+    for key in [
+        "peak_slip",
+        "residual_slip",
+        "peak_block_rotation",
+        "modes_end",
+    ] {
+        assert_eq!(summary[key].as_array().unwrap().len(), 5, "{key}");
+    }
+    let peak: Vec<f64> = summary["peak_slip"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect();
+    let residual = summary["residual_slip"].as_array().unwrap();
+    for (p, r) in peak.iter().zip(residual) {
+        assert!(r.as_f64().unwrap().abs() <= p + 1e-15);
+    }
+    assert!(peak.iter().any(|&p| p > 1e-4), "no joint slid: {peak:?}");
+    // Energy: ground work = Δ potential + Δ kinetic + impacts + friction within 0.1 %.
+    let rel = summary["energy"]["relative_residual"].as_f64().unwrap();
+    assert!(rel.abs() < 1e-3, "energy residual {rel}");
+    let events = std::fs::read_to_string(out.join("events.jsonl")).unwrap();
+    let mut kinds = std::collections::BTreeSet::new();
+    for line in events.lines() {
+        let e: serde_json::Value = serde_json::from_str(line).unwrap();
+        assert!(e["t"].is_f64() && e["joint"].is_u64(), "{line}");
+        kinds.insert(e["kind"].as_str().unwrap().to_string());
+    }
+    for kind in ["slip_start", "slip_stop", "lift_off", "landing", "impact"] {
+        assert!(kinds.contains(kind), "no {kind} event: {kinds:?}");
+    }
+    let history = std::fs::read_to_string(out.join("history.csv")).unwrap();
+    let header = history.lines().next().unwrap();
+    assert!(header.starts_with("t,x_0"), "{header}");
+    assert!(header.ends_with(",slip_3,slip_4"), "{header}");
+    assert!(history.lines().count() > 20_000);
+    assert!(std::fs::read_to_string(&plot).unwrap().starts_with("<svg"));
+    assert!(std::fs::read_to_string(out.join("plot_slips.svg"))
+        .unwrap()
+        .starts_with("<svg"));
+}
+
+#[test]
+fn a_drum_scene_with_a_bad_field_fails_naming_it() {
+    let dir = fresh_dir("bad_drum_scene");
+    std::fs::create_dir_all(&dir).unwrap();
+    let scene = dir.join("bad.json");
+    let base = r#"{"blocks": [{"width": 1, "height": 1, "mass": 2500}, {"width": 1, "height": 1, "mass": 2500}], "excitation": {"type": "none"}, "duration": 1.0, "dt": 0.001"#;
+    for (extra, field) in [
+        (r#", "on_sliding": "slide", "friction": [0.5]"#, "friction"),
+        (r#", "on_tension": "float""#, "on_tension"),
+        (
+            r#", "scheme": "event_driven", "on_sliding": "slide""#,
+            "on_sliding",
+        ),
+    ] {
+        std::fs::write(&scene, format!("{base}{extra}}}")).unwrap();
+        let out = dir.join("out");
+        let run = simulate(&scene, &out, None);
+        assert!(!run.ok, "{extra}");
+        assert!(run.stderr.contains(field), "{extra}: {}", run.stderr);
+        assert!(!out.exists(), "output written for a failed scene");
+    }
+}

@@ -14,6 +14,7 @@
 
 pub mod arch;
 pub mod colonnade;
+pub mod system;
 #[cfg(test)]
 mod tests;
 
@@ -224,17 +225,21 @@ impl Chain {
     /// after it by `phĭ_k + phî_k` about the pivot of whichever DOF is non-zero (`R_k` if
     /// `phĭ_k ≠ 0`). Admissible signs are not checked here.
     pub fn pose(&self, phi: &[f64]) -> ChainPose {
+        let mut pose = ChainPose::default();
+        self.pose_into(phi, &mut pose);
+        pose
+    }
+
+    /// [`Chain::pose`] into an existing pose, reusing its memory (the driver's hot path).
+    pub fn pose_into(&self, phi: &[f64], pose: &mut ChainPose) {
         let nj = self.n_joints();
         assert_eq!(phi.len(), 2 * nj, "phi must have 2 entries per joint");
         let nb = self.n_bodies();
-        let mut pose = ChainPose {
-            right_pivots: Vec::with_capacity(nj),
-            left_pivots: Vec::with_capacity(nj),
-            centres: Vec::with_capacity(nb),
-            maps: Vec::with_capacity(nb),
-            support: RigidMap::IDENTITY,
-            ..ChainPose::default()
-        };
+        pose.right_pivots.clear();
+        pose.left_pivots.clear();
+        pose.centres.clear();
+        pose.maps.clear();
+        pose.support = RigidMap::IDENTITY;
         let mut map = RigidMap::IDENTITY;
         for (k, joint) in self.joints.iter().enumerate() {
             let right = map.apply(joint.right_corner());
@@ -257,9 +262,12 @@ impl Chain {
             }
         }
         // Suffix sums over bodies j >= k (parallel-axis accumulation).
-        pose.suffix_mass = vec![0.0; nb + 1];
-        pose.suffix_centre = vec![[0.0; 2]; nb + 1];
-        pose.suffix_polar = vec![0.0; nb + 1];
+        pose.suffix_mass.clear();
+        pose.suffix_mass.resize(nb + 1, 0.0);
+        pose.suffix_centre.clear();
+        pose.suffix_centre.resize(nb + 1, [0.0; 2]);
+        pose.suffix_polar.clear();
+        pose.suffix_polar.resize(nb + 1, 0.0);
         for j in (0..nb).rev() {
             let (m, c, i) = (self.bodies[j].mass, pose.centres[j], self.bodies[j].inertia);
             let (m1, c1, j1) = (
@@ -275,11 +283,42 @@ impl Chain {
             pose.suffix_centre[j] = g;
             pose.suffix_polar[j] = j1 + m1 * dot(d1, d1) + i + m * dot(d, d);
         }
-        pose
+    }
+
+    /// Entry `M[a][b]` of the mass matrix of the cut chain in the pose ([`Chain::mass_matrix`]).
+    #[inline]
+    pub fn mass_entry(&self, pose: &ChainPose, a: usize, b: usize) -> f64 {
+        let nj = self.n_joints();
+        let ka = if a < nj { a } else { a - nj };
+        let kb = if b < nj { b } else { b - nj };
+        let k = ka.max(kb).min(self.n_bodies());
+        let s0 = pose.suffix_mass[k];
+        if s0 == 0.0 {
+            return 0.0;
+        }
+        let g = pose.suffix_centre[k];
+        let (pa, pb) = (self.pivot(pose, a), self.pivot(pose, b));
+        s0 * dot(sub(g, pa), sub(g, pb)) + pose.suffix_polar[k]
+    }
+
+    /// Entry `q[a]` of the load vector ([`Chain::load_vector`]).
+    #[inline]
+    pub fn load_entry(&self, pose: &ChainPose, a: usize, ground_acc: f64, gravity: f64) -> f64 {
+        let nj = self.n_joints();
+        let k = (if a < nj { a } else { a - nj }).min(self.n_bodies());
+        let s0 = pose.suffix_mass[k];
+        if s0 == 0.0 {
+            return 0.0;
+        }
+        s0 * cross(
+            sub(pose.suffix_centre[k], self.pivot(pose, a)),
+            [-ground_acc, -gravity],
+        )
     }
 
     /// Pivot of DOF `a` in the pose.
-    fn pivot(&self, pose: &ChainPose, a: usize) -> [f64; 2] {
+    #[inline]
+    pub fn pivot(&self, pose: &ChainPose, a: usize) -> [f64; 2] {
         let nj = self.n_joints();
         if a < nj {
             pose.right_pivots[a]
@@ -356,12 +395,17 @@ impl Chain {
         if !self.is_loop() {
             return Vec::new();
         }
+        self.closure_rate_of(pose, rates).to_vec()
+    }
+
+    /// [`Chain::closure_rate`] of a loop, without allocation.
+    pub fn closure_rate_of(&self, pose: &ChainPose, rates: &[f64]) -> [f64; 3] {
         let nj = self.n_joints();
         assert_eq!(rates.len(), 2 * nj);
         // Twist of the body before joint k: rotation rate and velocity at the origin.
         let mut omega = 0.0;
         let mut v0 = [0.0_f64; 2];
-        let mut out = vec![0.0; 3];
+        let mut out = [0.0; 3];
         for k in 0..nj {
             for (a, p) in [(k, pose.right_pivots[k]), (nj + k, pose.left_pivots[k])] {
                 let va = rates[a];
@@ -398,10 +442,29 @@ impl Chain {
     /// the same body, and the generalised force is `−Σ_{j after joint} m_j (c_j − P_a) × a(c_j)`.
     /// The exact equations of the cut chain are `M φ̈ = q + this (+ Gᵀ λ in a loop)`.
     pub fn velocity_load(&self, pose: &ChainPose, phi: &[f64], rates: &[f64]) -> Vec<f64> {
+        let mut out = vec![0.0; self.n_dofs()];
+        self.velocity_load_into(pose, phi, rates, &mut out, &mut Vec::new());
+        out
+    }
+
+    /// [`Chain::velocity_load`] into `out` (length `2J`), with the suffix sums
+    /// `Σ_{j after joint} m_j c_j × a_j` and `Σ m_j a_j` kept in `scratch` (reused memory):
+    /// `f_a = −(Σ m_j c_j × a_j − P_a × Σ m_j a_j)`, linear in the number of bodies.
+    pub fn velocity_load_into(
+        &self,
+        pose: &ChainPose,
+        phi: &[f64],
+        rates: &[f64],
+        out: &mut [f64],
+        scratch: &mut Vec<[f64; 2]>,
+    ) {
         let (nj, nb) = (self.n_joints(), self.n_bodies());
         assert_eq!(rates.len(), 2 * nj);
         assert_eq!(phi.len(), 2 * nj);
-        let mut centre_acc = vec![[0.0_f64; 2]; nb];
+        assert_eq!(out.len(), 2 * nj);
+        scratch.clear();
+        scratch.resize(2 * (nb + 1), [0.0; 2]);
+        let (centre_acc, sums) = scratch.split_at_mut(nb + 1);
         let mut omega = 0.0_f64;
         let mut hinge = [0.0_f64, 0.0];
         let mut hinge_acc = [0.0_f64, 0.0];
@@ -425,13 +488,23 @@ impl Chain {
             hinge = p;
             hinge_acc = acc_p;
         }
-        (0..self.n_dofs())
-            .map(|a| {
-                let p = self.pivot(pose, a);
-                ((a % nj)..nb)
-                    .map(|j| -self.bodies[j].mass * cross(sub(pose.centres[j], p), centre_acc[j]))
-                    .sum()
-            })
-            .collect()
+        // Backwards: sums[k] = Σ_{j>=k} m_j a_j, and centre_acc[k], once read, becomes
+        // (Σ_{j>=k} m_j c_j × a_j, 0).
+        let (mut moment, mut force) = (0.0_f64, [0.0_f64; 2]);
+        centre_acc[nb] = [0.0, 0.0];
+        sums[nb] = [0.0, 0.0];
+        for j in (0..nb).rev() {
+            let m = self.bodies[j].mass;
+            let (c, a) = (pose.centres[j], centre_acc[j]);
+            moment += m * cross(c, a);
+            force = [force[0] + m * a[0], force[1] + m * a[1]];
+            centre_acc[j] = [moment, 0.0];
+            sums[j] = force;
+        }
+        for (d, o) in out.iter_mut().enumerate() {
+            let k = (if d < nj { d } else { d - nj }).min(nb);
+            let p = self.pivot(pose, d);
+            *o = -(centre_acc[k][0] - cross(p, sums[k]));
+        }
     }
 }

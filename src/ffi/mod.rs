@@ -15,6 +15,7 @@
 //! crate. The status codes come from the table in `src/error.rs`.
 
 mod boundary;
+mod chains;
 mod types;
 
 use std::ffi::c_char;
@@ -24,6 +25,10 @@ use crate::error::ErrorKind;
 use crate::model::configuration::{self, Status};
 use crate::model::interface_system::{self, BlockArrays};
 use boundary::{input, optional_input, status_call, Output};
+pub use chains::{
+    rocking_arch_system, rocking_colonnade_system, rocking_impact_model_constrained,
+    rocking_opening_model_constrained, RockingArch, ROCKING_MAX_CONSTRAINTS,
+};
 pub use types::{RockingOptions, RockingReport};
 
 /// ABI version of this header; bumped on any incompatible change of a signature or struct.

@@ -374,6 +374,7 @@ pub(crate) struct Faces<'a> {
     cone: &'a ConeProblem,
     free: Vec<usize>,
     digits: Vec<u8>,
+    radices: Vec<u8>,
     done: bool,
 }
 
@@ -383,11 +384,15 @@ impl<'a> Faces<'a> {
             cone,
             free: (0..cone.p()).filter(|&i| !cone.gens[i].bounded).collect(),
             digits: vec![0; cone.groups.len() + cone.singles.len()],
+            radices: (cone.groups.iter().map(|_| 3))
+                .chain(cone.singles.iter().map(|_| 2))
+                .collect(),
             done: false,
         }
     }
 
     /// Writes the next face into `set` (cleared first); false when every face has been given.
+    #[inline(always)]
     pub(crate) fn next_into(&mut self, set: &mut Vec<usize>) -> bool {
         if self.done {
             return false;
@@ -406,9 +411,9 @@ impl<'a> Faces<'a> {
         }
         // Advance the counter; past the last face, stop.
         self.done = true;
-        for (u, d) in self.digits.iter_mut().enumerate() {
+        for (d, &radix) in self.digits.iter_mut().zip(&self.radices) {
             *d += 1;
-            if *d < if u < groups { 3 } else { 2 } {
+            if *d < radix {
                 self.done = false;
                 break;
             }

@@ -63,6 +63,7 @@ pub fn c_examples() -> Vec<String> {
 pub fn success_marker(source: &str) -> &'static str {
     match source {
         "c_examples/minimal.c" => "all thesis values reproduced",
+        "c_examples/arch.c" => "arch: all checks passed",
         "c_examples/element_skeleton.c" => "done: 3 events",
         "c_examples/opensees_style_harness.c" => "harness: all self-checks passed",
         "c_examples/stiff_blocks.c" => "stiff blocks: all self-checks passed",

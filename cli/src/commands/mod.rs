@@ -4,6 +4,7 @@ pub mod design;
 pub mod oas;
 pub mod oc;
 pub mod simulate;
+pub mod simulate_drums;
 pub mod sweep;
 pub mod t1;
 pub mod thesis;

@@ -1,4 +1,5 @@
 //! `rocking simulate SCENE.json --out DIR [--plot FILE.svg|png]`: a time history of a scene.
+//! A scene whose joints may slide or fly runs the contact scheme instead ([`super::simulate_drums`]).
 //!
 //! Writes `DIR/history.csv` (t, interface angles and rates, block rotations, statuses),
 //! `DIR/events.jsonl` (one JSON object per event) and `DIR/summary.json`. Files are written only
@@ -37,6 +38,9 @@ pub struct SimulateArgs {
 pub fn run(a: &SimulateArgs) -> Result<(), String> {
     let (scene_path, out, plot) = (a.scene.as_path(), a.out.as_path(), a.plot.as_deref());
     let scene = scene::load(scene_path).map_err(|e| e.to_string())?;
+    if scene.contact.is_some() {
+        return super::simulate_drums::run(&scene, scene_path, out, plot);
+    }
     let excitation = &scene.excitation;
     let motion = FnMotion(|t| excitation.acceleration(t), excitation.end_time());
     let bar = progress::bar(1000, "simulating");

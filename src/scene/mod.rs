@@ -24,6 +24,10 @@ use crate::model::column::{Block, Column};
 use crate::model::cone::{ModelOptions, Solver};
 use serde::Deserialize;
 
+mod contact;
+use crate::contact::simulation::DrumOptions;
+pub use contact::{FrictionSpec, SchemeChoice};
+
 /// One block, bottom to top.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -150,9 +154,18 @@ pub struct SceneSpec {
     /// "auto" (default), "enumerate" or "projection".
     #[serde(default)]
     pub solver: Option<String>,
-    /// Friction coefficient (default 0.7).
+    /// Friction coefficient μ (default 0.7): one number, or one per joint (scheme "moreau").
     #[serde(default)]
-    pub friction: Option<f64>,
+    pub friction: Option<FrictionSpec>,
+    /// What a sliding joint does: "stop" (default: the thesis's driver) or "slide".
+    #[serde(default)]
+    pub on_sliding: Option<String>,
+    /// What a joint that would carry tension does: "stop" (default) or "fly".
+    #[serde(default)]
+    pub on_tension: Option<String>,
+    /// "event_driven" or "moreau" (default: "moreau" when a joint may slide or fly).
+    #[serde(default)]
+    pub scheme: Option<String>,
     #[serde(default)]
     pub gravity: Option<f64>,
     /// Exact Lagrangian velocity terms (default false: thesis Eq. 6).
@@ -174,7 +187,11 @@ pub struct Scene {
     pub title: String,
     pub column: Column,
     pub excitation: Excitation,
+    /// The event-driven driver's options (the scheme "event_driven").
     pub options: SimulationOptions,
+    /// The contact scheme's options when the scene chose it (`src/contact/`); `None`: the
+    /// event-driven driver runs the scene.
+    pub contact: Option<DrumOptions>,
     pub output: OutputSpec,
 }
 
@@ -226,6 +243,11 @@ pub fn build(spec: SceneSpec, base: &Path, name: &str) -> Result<Scene, SceneErr
         other => err("blocks", other),
     })?;
     let excitation = excitation(&spec.excitation, base)?;
+    let scheme = contact::scheme(&spec)?;
+    let contact = match scheme {
+        SchemeChoice::EventDriven => None,
+        SchemeChoice::Moreau => Some(contact::drum_options(&spec, &column)?),
+    };
     let integrator = match &spec.integrator {
         None => Integrator::default(),
         Some(IntegratorSpec::Name(n)) => match n.as_str() {
@@ -293,7 +315,7 @@ pub fn build(spec: SceneSpec, base: &Path, name: &str) -> Result<Scene, SceneErr
                 solver,
                 ..ModelOptions::default()
             },
-            friction: spec.friction.unwrap_or(defaults.physics.friction),
+            friction: contact::driver_friction(&spec, defaults.physics.friction),
             gravity: spec.gravity.unwrap_or(defaults.physics.gravity),
             exact_velocity_terms: spec.exact_velocity_terms,
         },
@@ -329,6 +351,7 @@ pub fn build(spec: SceneSpec, base: &Path, name: &str) -> Result<Scene, SceneErr
         column,
         excitation,
         options,
+        contact,
         output: spec.output,
     })
 }

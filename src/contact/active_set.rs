@@ -1,0 +1,443 @@
+//! The primal-dual active set method on the joint-wise contact problem of [`super::friction`]:
+//! with the statuses fixed, the reduced linear system (block tridiagonal, one block LU from the
+//! lowest changed joint), the rates it gives, and the update of the statuses (damped: only
+//! violations of at least half the largest; of a run of neighbours calling for the same change
+//! only the lowest; after a cycle one joint at a time, Murty's least-index rule), then the
+//! fallbacks (Lemke, nonsmooth Gauss–Seidel).
+
+use super::friction::{
+    dot3, invert3, ContactProblem, JointStatus, Reduction, Slip, SolveFailure, SolveReport, B3,
+    MAX_ITERATIONS,
+};
+
+impl ContactProblem {
+    /// The reduction of joint `k` for status `st`.
+    pub(super) fn reduce(&self, k: usize, st: &JointStatus) -> Reduction {
+        let jc = &self.joints[k];
+        let mut red = Reduction::default();
+        let mut r = 0;
+        for c in 0..2 {
+            if jc.active[c] && st.closed[c] {
+                red.rows[r] = c;
+                red.cols[r][c] = 1.0;
+                r += 1;
+            }
+        }
+        let nclosed = r;
+        if nclosed > 0 && jc.mu > 0.0 {
+            match st.slip {
+                Slip::Stick => {
+                    red.rows[r] = 2;
+                    red.cols[r][2] = 1.0;
+                    r += 1;
+                }
+                slip => {
+                    let f = -slip.sign() * jc.mu;
+                    for i in 0..nclosed {
+                        red.cols[i][2] = f;
+                    }
+                }
+            }
+        }
+        red.size = r;
+        red
+    }
+
+    /// `S_k X E_l`: rows of joint `k`'s reduction, columns of joint `l`'s.
+    #[inline]
+    pub(super) fn reduced_block(rk: &Reduction, x: &B3, rl: &Reduction) -> B3 {
+        let mut out = [[0.0; 3]; 3];
+        for i in 0..rk.size {
+            let row = &x[rk.rows[i]];
+            for j in 0..rl.size {
+                out[i][j] = dot3(row, &rl.cols[j]);
+            }
+        }
+        out
+    }
+
+    #[inline]
+    pub(super) fn reduced_block_t(rk: &Reduction, x: &B3, rl: &Reduction) -> B3 {
+        // Uses Xᵀ: rows of X's columns.
+        let mut out = [[0.0; 3]; 3];
+        for i in 0..rk.size {
+            let r = rk.rows[i];
+            let row = [x[0][r], x[1][r], x[2][r]];
+            for j in 0..rl.size {
+                out[i][j] = dot3(&row, &rl.cols[j]);
+            }
+        }
+        out
+    }
+
+    /// One linear solve for the statuses; fills `p` and `u`. `false` if singular. Joints below
+    /// `from` have the statuses of the previous solve: their reductions and eliminated blocks are
+    /// kept (the coupling of joint `from − 1` with joint `from` is redone).
+    fn linear_solve(&mut self, statuses: &[JointStatus], from: usize) -> bool {
+        let n = self.n;
+        for k in from..n {
+            self.red[k] = self.reduce(k, &statuses[k]);
+        }
+        if from > 0 {
+            let k = from - 1;
+            let rk = self.red[k];
+            let rn = self.red[from];
+            let a_up = Self::reduced_block(&rk, &self.wo[k], &rn);
+            let dinv = self.dinv[k];
+            let mut c = [[0.0; 3]; 3];
+            for i in 0..rk.size {
+                for j in 0..rn.size {
+                    let mut acc = 0.0;
+                    for l in 0..rk.size {
+                        acc += dinv[i][l] * a_up[l][j];
+                    }
+                    c[i][j] = acc;
+                }
+            }
+            self.cp[k] = c;
+        }
+        // Forward elimination.
+        for k in from..n {
+            let rk = self.red[k];
+            let m = rk.size;
+            if m == 0 {
+                self.dp[k] = [0.0; 3];
+                self.cp[k] = [[0.0; 3]; 3];
+                continue;
+            }
+            let mut d = Self::reduced_block(&rk, &self.wd[k], &rk);
+            let mut rhs = [0.0; 3];
+            for i in 0..m {
+                rhs[i] = -self.b[k][rk.rows[i]];
+            }
+            if k > 0 && self.red[k - 1].size > 0 {
+                let rp = self.red[k - 1];
+                let a_lo = Self::reduced_block_t(&rk, &self.wo[k - 1], &rp);
+                let cprev = &self.cp[k - 1];
+                let dprev = &self.dp[k - 1];
+                for i in 0..m {
+                    for j in 0..m {
+                        let mut acc = 0.0;
+                        for l in 0..rp.size {
+                            acc += a_lo[i][l] * cprev[l][j];
+                        }
+                        d[i][j] -= acc;
+                    }
+                    let mut acc = 0.0;
+                    for l in 0..rp.size {
+                        acc += a_lo[i][l] * dprev[l];
+                    }
+                    rhs[i] -= acc;
+                }
+            }
+            let Some(dinv) = invert3(&d, m) else {
+                return false;
+            };
+            self.dinv[k] = dinv;
+            let mut y = [0.0; 3];
+            for i in 0..m {
+                for j in 0..m {
+                    y[i] += dinv[i][j] * rhs[j];
+                }
+            }
+            self.dp[k] = y;
+            if k + 1 < n {
+                let rn = self.red[k + 1];
+                let a_up = Self::reduced_block(&rk, &self.wo[k], &rn);
+                let mut c = [[0.0; 3]; 3];
+                for i in 0..m {
+                    for j in 0..rn.size {
+                        let mut acc = 0.0;
+                        for l in 0..m {
+                            acc += dinv[i][l] * a_up[l][j];
+                        }
+                        c[i][j] = acc;
+                    }
+                }
+                self.cp[k] = c;
+            }
+        }
+        // Back substitution.
+        for k in (0..n).rev() {
+            let m = self.red[k].size;
+            let mut z = self.dp[k];
+            if k + 1 < n {
+                let rn = self.red[k + 1].size;
+                let zn = self.z[k + 1];
+                for i in 0..m {
+                    let mut acc = 0.0;
+                    for j in 0..rn {
+                        acc += self.cp[k][i][j] * zn[j];
+                    }
+                    z[i] -= acc;
+                }
+            }
+            self.z[k] = z;
+        }
+        let mut finite = true;
+        for k in 0..n {
+            let red = &self.red[k];
+            let mut p = [0.0; 3];
+            for j in 0..red.size {
+                let zj = self.z[k][j];
+                for a in 0..3 {
+                    p[a] += red.cols[j][a] * zj;
+                }
+            }
+            finite &= p.iter().all(|x| x.is_finite());
+            self.p[k] = p;
+        }
+        self.update_rates();
+        finite
+    }
+
+    /// `u = W p + b`.
+    pub(super) fn update_rates(&mut self) {
+        let n = self.n;
+        for k in 0..n {
+            let mut u = self.b[k];
+            let p = self.p[k];
+            for a in 0..3 {
+                u[a] += dot3(&self.wd[k][a], &p);
+            }
+            if k + 1 < n {
+                let pn = self.p[k + 1];
+                for a in 0..3 {
+                    u[a] += dot3(&self.wo[k][a], &pn);
+                }
+            }
+            if k > 0 {
+                let pp = self.p[k - 1];
+                let o = &self.wo[k - 1];
+                for a in 0..3 {
+                    u[a] += o[0][a] * pp[0] + o[1][a] * pp[1] + o[2][a] * pp[2];
+                }
+            }
+            self.u[k] = u;
+        }
+    }
+
+    /// Status update of the active set method; returns the lowest joint whose status changed.
+    /// Each joint's next status and the size of the violation that calls for it (relative to the
+    /// problem's velocity or impulse scale) are found first; then the violated joints change
+    /// whose violation is at least half the largest, the lowest of each run of neighbours calling
+    /// for the same change (a damped primal-dual active set step: in a stack, a wrong status at
+    /// one joint puts spurious tension on the joints around it, and opening them all makes the
+    /// closures come back one joint per iteration); with `single`, only the lowest violated
+    /// joint. On the 20-drum suite columns this takes a third fewer iterations and half the
+    /// fallbacks of changing every violated joint at once.
+    fn update_statuses(
+        &mut self,
+        statuses: &mut [JointStatus],
+        tol_u: f64,
+        tol_p: f64,
+        single: bool,
+    ) -> Option<usize> {
+        let (u_ref, p_ref) = (tol_u * 1e10, tol_p * 1e10);
+        let mut worst = 0.0_f64;
+        for k in 0..self.n {
+            let jc = &self.joints[k];
+            let st = statuses[k];
+            let p = self.p[k];
+            let u = self.u[k];
+            let mut next = st;
+            let mut viol = 0.0_f64;
+            for c in 0..2 {
+                if !jc.active[c] {
+                    next.closed[c] = false;
+                } else if jc.bilateral[c] {
+                    next.closed[c] = true;
+                } else if st.closed[c] {
+                    if p[c] < -tol_p {
+                        next.closed[c] = false;
+                        viol = viol.max(-p[c] / p_ref);
+                    }
+                } else if u[c] < -tol_u {
+                    next.closed[c] = true;
+                    viol = viol.max(-u[c] / u_ref);
+                }
+            }
+            let any_closed = (jc.active[0] && st.closed[0]) || (jc.active[1] && st.closed[1]);
+            if any_closed && jc.mu > 0.0 && jc.mu.is_finite() {
+                let bound = jc.mu * (p[0] + p[1]).max(0.0);
+                match st.slip {
+                    Slip::Stick => {
+                        if p[2].abs() > bound + tol_p {
+                            next.slip = if p[2] > 0.0 {
+                                Slip::Negative
+                            } else {
+                                Slip::Positive
+                            };
+                            viol = viol.max((p[2].abs() - bound) / p_ref);
+                        }
+                    }
+                    slip => {
+                        let s = slip.sign();
+                        if s * u[2] < -tol_u {
+                            // Reversed: stick, or slip the other way if it reverses strongly
+                            // (Alart–Curnier's augmented test with ρ = 1 / W_tt).
+                            let wtt = self.wd[k][2][2];
+                            let rho = if wtt > 0.0 { 1.0 / wtt } else { 0.0 };
+                            next.slip = if -s * u[2] * rho > 2.0 * bound {
+                                if s > 0.0 {
+                                    Slip::Negative
+                                } else {
+                                    Slip::Positive
+                                }
+                            } else {
+                                Slip::Stick
+                            };
+                            viol = viol.max(-s * u[2] / u_ref);
+                        }
+                    }
+                }
+            }
+            let any_next = (jc.active[0] && next.closed[0]) || (jc.active[1] && next.closed[1]);
+            if !any_next || jc.mu == 0.0 || jc.mu.is_infinite() {
+                next.slip = Slip::Stick;
+            }
+            if next == st {
+                viol = 0.0;
+            } else {
+                // A change with no measured violation (bookkeeping of inactive ends) is taken.
+                viol = viol.max(f64::MIN_POSITIVE);
+            }
+            self.next[k] = next;
+            self.viol[k] = viol;
+            worst = worst.max(viol);
+        }
+        if worst == 0.0 {
+            return None;
+        }
+        let mut changed: Option<usize> = None;
+        // Of a run of neighbouring joints calling for the same change (same status before and
+        // after), only the lowest changes: the others' violations are usually the echo of its
+        // wrong status (in a stack, a joint that should open puts tension on its neighbours).
+        let mut run: Option<(JointStatus, JointStatus)> = None;
+        for k in 0..self.n {
+            let v = self.viol[k];
+            if v == 0.0 {
+                run = None;
+                continue;
+            }
+            let kind = (statuses[k], self.next[k]);
+            let echo = run == Some(kind);
+            run = Some(kind);
+            if !single && (v < 0.5 * worst || echo) {
+                continue;
+            }
+            statuses[k] = self.next[k];
+            if changed.is_none() {
+                changed = Some(k);
+                if single {
+                    break;
+                }
+            }
+        }
+        if changed.is_none() {
+            // Every violation was held back: take the largest.
+            let mut k_max = 0;
+            for k in 0..self.n {
+                if self.viol[k] > self.viol[k_max] {
+                    k_max = k;
+                }
+            }
+            statuses[k_max] = self.next[k_max];
+            changed = Some(k_max);
+        }
+        changed
+    }
+
+    fn signature(statuses: &[JointStatus]) -> u64 {
+        // FNV-1a over the status codes: deterministic, no allocation.
+        let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+        for s in statuses {
+            let code = (s.closed[0] as u64) | (s.closed[1] as u64) << 1 | (s.slip as u64) << 2;
+            h ^= code;
+            h = h.wrapping_mul(0x0000_0100_0000_01b3);
+        }
+        h
+    }
+
+    /// Solves the problem set by [`ContactProblem::set`], starting from `statuses` (the previous
+    /// step's: a warm start) and leaving the solution's statuses there. The impulses are then
+    /// read with [`ContactProblem::impulses`], the velocities with [`ContactProblem::apply`].
+    pub fn solve(&mut self, statuses: &mut [JointStatus]) -> Result<SolveReport, SolveFailure> {
+        let n = self.n;
+        // Statuses of inactive ends are open; bilateral ends closed.
+        for k in 0..n {
+            let jc = self.joints[k];
+            for c in 0..2 {
+                if !jc.active[c] {
+                    statuses[k].closed[c] = false;
+                } else if jc.bilateral[c] {
+                    statuses[k].closed[c] = true;
+                }
+            }
+            if jc.mu == 0.0 || jc.mu.is_infinite() {
+                statuses[k].slip = Slip::Stick;
+            }
+        }
+        let mut scale_u = 0.0_f64;
+        for k in 0..n {
+            for a in 0..3 {
+                scale_u = scale_u.max(self.b[k][a].abs());
+            }
+        }
+        let tol_u = 1e-10 * scale_u.max(1e-300);
+        // The impulse that changes a velocity by `scale_u`: the floor of the impulse tolerance
+        // (when every impulse is nearly zero, their own size is round-off).
+        let mut wmax = 0.0_f64;
+        for k in 0..n {
+            for a in 0..3 {
+                wmax = wmax.max(self.wd[k][a][a]);
+            }
+        }
+        let p_floor = if wmax > 0.0 { scale_u / wmax } else { 0.0 };
+        self.history.clear();
+        let mut report = SolveReport::default();
+        let mut from = 0;
+        // All violated statuses change at once (primal-dual active set); after a cycle, one joint
+        // at a time (the lowest: a least-index rule, Murty 1974); then the fallbacks.
+        let mut single = false;
+        let mut single_iterations = 0;
+        loop {
+            report.iterations += 1;
+            if single {
+                single_iterations += 1;
+            }
+            if !self.linear_solve(statuses, from) {
+                break;
+            }
+            let mut scale_p = 0.0_f64;
+            for p in &self.p {
+                for x in p {
+                    scale_p = scale_p.max(x.abs());
+                }
+            }
+            let tol_p = 1e-10 * scale_p.max(p_floor).max(1e-300);
+            match self.update_statuses(statuses, tol_u, tol_p, single) {
+                None => return Ok(report),
+                Some(k) => from = k,
+            }
+            let sig = Self::signature(statuses);
+            let seen = self.history.iter().position(|&h| h == sig);
+            if !single {
+                if seen.is_some() || report.iterations >= MAX_ITERATIONS {
+                    single = true;
+                    self.history.clear();
+                }
+            } else if seen.is_some() || single_iterations >= 4 * n + 8 {
+                break;
+            }
+            self.history.push(sig);
+        }
+        report.fallback = true;
+        if self.solve_lemke(statuses).is_ok() {
+            return Ok(report);
+        }
+        report.gauss_seidel = true;
+        report.inexact = !self.solve_gauss_seidel(statuses)?;
+        Ok(report)
+    }
+}

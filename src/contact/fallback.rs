@@ -1,0 +1,349 @@
+//! The fallbacks of the contact problem's active set method ([`super::friction`]), both
+//! deterministic and bounded: Lemke's algorithm on the standard LCP of 2D Coulomb friction
+//! (Stewart & Trinkle 1996; Anitescu & Potra 1997), exact up to round-off; and when round-off
+//! breaks Lemke's path (near-degenerate problems, a column almost at rest), the nonsmooth
+//! Gauss–Seidel iteration of non-smooth contact dynamics (Jean 1999; Acary & Brogliato 2008,
+//! §13.4.5), joint by joint with exact local solves, to a relative change of `1e-12` or at most
+//! 20 000 sweeps.
+
+use super::friction::{ContactProblem, JointStatus, Slip, SolveFailure, B3};
+
+/// A variable of the LCP.
+#[derive(Clone, Copy, Debug)]
+enum Var {
+    /// Normal impulse at an end, with a sign (a bilateral end has two parts).
+    Normal(usize, usize, f64),
+    /// A signed part of the tangential impulse.
+    Tangent(usize, f64),
+    /// The slip speed `β` of Coulomb's law (multiplier of the cone).
+    Beta(usize),
+}
+
+impl ContactProblem {
+    /// Statuses read off a solution (for the next warm start).
+    fn statuses_from_impulses(&self, statuses: &mut [JointStatus]) {
+        for k in 0..self.n {
+            let jc = self.joints[k];
+            let p = self.p[k];
+            let mut st = JointStatus::default();
+            for c in 0..2 {
+                st.closed[c] = jc.active[c] && (jc.bilateral[c] || p[c] > 0.0);
+            }
+            if jc.mu > 0.0 && jc.mu.is_finite() {
+                let normal = p[0] + p[1];
+                if normal > 0.0 && p[2].abs() >= jc.mu * normal * (1.0 - 1e-9) {
+                    st.slip = if p[2] > 0.0 {
+                        Slip::Negative
+                    } else {
+                        Slip::Positive
+                    };
+                }
+            }
+            statuses[k] = st;
+        }
+    }
+
+    /// Block `(k, l)` of `W` (zero beyond the neighbours).
+    fn block(&self, k: usize, l: usize) -> Option<B3> {
+        if k == l {
+            Some(self.wd[k])
+        } else if l == k + 1 {
+            Some(self.wo[k])
+        } else if k == l + 1 {
+            let o = &self.wo[l];
+            let mut t = [[0.0; 3]; 3];
+            for a in 0..3 {
+                for c in 0..3 {
+                    t[a][c] = o[c][a];
+                }
+            }
+            Some(t)
+        } else {
+            None
+        }
+    }
+
+    /// Lemke's algorithm on the LCP of the whole problem: per joint the active ends' normal
+    /// impulses (a bilateral end as two signed parts), the tangential impulse as `T⁺ − T⁻` and
+    /// the slip speed `β`: `w_{T±} = β ± U_t`, `w_β = μ N − T⁺ − T⁻` (μ = ∞: `U_t = 0`, `T` free).
+    pub(super) fn solve_lemke(&mut self, statuses: &mut [JointStatus]) -> Result<(), SolveFailure> {
+        let n = self.n;
+        let mut vars: Vec<Var> = Vec::new();
+        for k in 0..n {
+            let jc = self.joints[k];
+            for c in 0..2 {
+                if jc.active[c] {
+                    vars.push(Var::Normal(k, c, 1.0));
+                    if jc.bilateral[c] {
+                        vars.push(Var::Normal(k, c, -1.0));
+                    }
+                }
+            }
+            if (jc.active[0] || jc.active[1]) && jc.mu > 0.0 {
+                vars.push(Var::Tangent(k, 1.0));
+                vars.push(Var::Tangent(k, -1.0));
+                if jc.mu.is_finite() {
+                    vars.push(Var::Beta(k));
+                }
+            }
+        }
+        let m = vars.len();
+        // Impulse (P_R, P_L, T) of a unit of a variable.
+        let unit = |v: Var| -> (usize, [f64; 3]) {
+            match v {
+                Var::Normal(k, c, s) => {
+                    let mut p = [0.0; 3];
+                    p[c] = s;
+                    (k, p)
+                }
+                Var::Tangent(k, s) => (k, [0.0, 0.0, s]),
+                Var::Beta(k) => (k, [0.0; 3]),
+            }
+        };
+        let mut mat = vec![0.0; m * m];
+        let mut q = vec![0.0; m];
+        for (i, &vi) in vars.iter().enumerate() {
+            let (ki, ri) = unit(vi);
+            if let Var::Beta(k) = vi {
+                let mu = self.joints[k].mu;
+                for (j, &vj) in vars.iter().enumerate() {
+                    match vj {
+                        Var::Normal(kj, _, s) if kj == k => mat[i * m + j] = mu * s,
+                        Var::Tangent(kj, _) if kj == k => mat[i * m + j] = -1.0,
+                        _ => {}
+                    }
+                }
+                continue;
+            }
+            for (j, &vj) in vars.iter().enumerate() {
+                if let Var::Beta(kb) = vj {
+                    if matches!(vi, Var::Tangent(_, _)) && kb == ki {
+                        mat[i * m + j] = 1.0;
+                    }
+                    continue;
+                }
+                let (kj, rj) = unit(vj);
+                if let Some(w) = self.block(ki, kj) {
+                    let mut acc = 0.0;
+                    for a in 0..3 {
+                        if ri[a] != 0.0 {
+                            for c in 0..3 {
+                                acc += ri[a] * w[a][c] * rj[c];
+                            }
+                        }
+                    }
+                    mat[i * m + j] = acc;
+                }
+            }
+            q[i] = (0..3).map(|a| ri[a] * self.b[ki][a]).sum();
+        }
+        let z = self.lemke.solve(&mat, &q, m).ok_or(SolveFailure)?;
+        for p in self.p.iter_mut() {
+            *p = [0.0; 3];
+        }
+        for (i, &vi) in vars.iter().enumerate() {
+            let (k, r) = unit(vi);
+            for a in 0..3 {
+                self.p[k][a] += r[a] * z[i];
+            }
+        }
+        self.update_rates();
+        self.statuses_from_impulses(statuses);
+        Ok(())
+    }
+
+    /// The nonsmooth Gauss–Seidel iteration: each joint's local problem (its 3 × 3 block, the
+    /// neighbours' impulses fixed) solved exactly by trying its statuses in a fixed order;
+    /// symmetric sweeps (bottom up, then top down) until the impulses change by less than `1e-12`
+    /// of their size, or 20 000 sweeps: then the last iterate is the answer (`Ok(false)`).
+    pub(super) fn solve_gauss_seidel(
+        &mut self,
+        statuses: &mut [JointStatus],
+    ) -> Result<bool, SolveFailure> {
+        let n = self.n;
+        for p in self.p.iter_mut() {
+            *p = [0.0; 3];
+        }
+        let mut converged = false;
+        for sweep in 0..20_000 {
+            let mut change = 0.0_f64;
+            let mut size = 0.0_f64;
+            for i in 0..n {
+                let k = if sweep % 2 == 0 { i } else { n - 1 - i };
+                let old = self.p[k];
+                let Some(new) = self.local_solve(k) else {
+                    continue;
+                };
+                self.p[k] = new;
+                for a in 0..3 {
+                    change = change.max((new[a] - old[a]).abs());
+                    size = size.max(new[a].abs());
+                }
+            }
+            if change <= 1e-12 * size || size == 0.0 {
+                converged = true;
+                break;
+            }
+        }
+        if !converged && !self.p.iter().flatten().all(|x| x.is_finite()) {
+            return Err(SolveFailure);
+        }
+        self.update_rates();
+        self.statuses_from_impulses(statuses);
+        Ok(converged)
+    }
+
+    /// Exact solution of joint `k`'s local problem with its neighbours' impulses fixed: the first
+    /// status (in a fixed order) whose solution satisfies the conditions, else the least violating.
+    fn local_solve(&self, k: usize) -> Option<[f64; 3]> {
+        let n = self.n;
+        let jc = self.joints[k];
+        if !(jc.active[0] || jc.active[1]) {
+            return Some([0.0; 3]);
+        }
+        let mut r = self.b[k];
+        if k + 1 < n {
+            let pn = self.p[k + 1];
+            for a in 0..3 {
+                for c in 0..3 {
+                    r[a] += self.wo[k][a][c] * pn[c];
+                }
+            }
+        }
+        if k > 0 {
+            let pp = self.p[k - 1];
+            for a in 0..3 {
+                for c in 0..3 {
+                    r[a] += self.wo[k - 1][c][a] * pp[c];
+                }
+            }
+        }
+        let wl = &self.wd[k];
+        let friction = jc.mu > 0.0;
+        let scale_u = r.iter().fold(0.0_f64, |m, x| m.max(x.abs())).max(1e-300);
+        let mut best: Option<([f64; 3], f64)> = None;
+        for pattern in [[true, true], [true, false], [false, true], [false, false]] {
+            if (pattern[0] && !jc.active[0]) || (pattern[1] && !jc.active[1]) {
+                continue;
+            }
+            if (jc.bilateral[0] && !pattern[0]) || (jc.bilateral[1] && !pattern[1]) {
+                continue;
+            }
+            let any = pattern[0] || pattern[1];
+            let slips: &[f64] = if any && friction {
+                if jc.mu.is_finite() {
+                    &[0.0, 1.0, -1.0]
+                } else {
+                    &[0.0]
+                }
+            } else {
+                &[f64::NAN]
+            };
+            for &sigma in slips {
+                let stick = sigma == 0.0;
+                let slide = !stick && !sigma.is_nan();
+                let mut idx = [0usize; 3];
+                let mut m = 0;
+                for c in 0..2 {
+                    if pattern[c] {
+                        idx[m] = c;
+                        m += 1;
+                    }
+                }
+                if stick {
+                    idx[m] = 2;
+                    m += 1;
+                }
+                let mut a = [[0.0; 3]; 3];
+                let mut rhs = [0.0; 3];
+                for (ii, &row) in idx[..m].iter().enumerate() {
+                    rhs[ii] = -r[row];
+                    for (jj, &col) in idx[..m].iter().enumerate() {
+                        a[ii][jj] = wl[row][col];
+                        if slide && col < 2 {
+                            a[ii][jj] += wl[row][2] * (-sigma * jc.mu);
+                        }
+                    }
+                }
+                let Some(x) = solve_small(&a, &rhs, m) else {
+                    continue;
+                };
+                let mut p = [0.0; 3];
+                for (ii, &col) in idx[..m].iter().enumerate() {
+                    p[col] = x[ii];
+                }
+                if slide {
+                    p[2] = -sigma * jc.mu * (p[0] + p[1]);
+                }
+                let mut u = r;
+                for i in 0..3 {
+                    for j in 0..3 {
+                        u[i] += wl[i][j] * p[j];
+                    }
+                }
+                let pscale = p.iter().fold(0.0_f64, |m, x| m.max(x.abs())).max(1e-300);
+                let mut viol = 0.0_f64;
+                for c in 0..2 {
+                    if !jc.active[c] || jc.bilateral[c] {
+                        continue;
+                    }
+                    if pattern[c] {
+                        viol = viol.max(-p[c] / pscale);
+                    } else {
+                        viol = viol.max(-u[c] / scale_u);
+                    }
+                }
+                if any && friction && jc.mu.is_finite() {
+                    if stick {
+                        viol = viol.max((p[2].abs() - jc.mu * (p[0] + p[1])) / pscale);
+                    } else {
+                        viol = viol.max(-sigma * u[2] / scale_u);
+                    }
+                }
+                if viol <= 1e-12 {
+                    return Some(p);
+                }
+                if best.map_or(true, |(_, v)| viol < v) {
+                    best = Some((p, viol));
+                }
+            }
+        }
+        best.map(|(p, _)| p)
+    }
+}
+
+/// Solves the leading `m × m` system by Gaussian elimination with partial pivoting; `None` when
+/// singular (`m = 0` gives the empty solution).
+fn solve_small(a: &B3, b: &[f64; 3], m: usize) -> Option<[f64; 3]> {
+    let mut a = *a;
+    let mut b = *b;
+    for c in 0..m {
+        let mut p = c;
+        for r in c + 1..m {
+            if a[r][c].abs() > a[p][c].abs() {
+                p = r;
+            }
+        }
+        if a[p][c] == 0.0 || !a[p][c].is_finite() {
+            return None;
+        }
+        a.swap(c, p);
+        b.swap(c, p);
+        for r in c + 1..m {
+            let f = a[r][c] / a[c][c];
+            for j in c..m {
+                a[r][j] -= f * a[c][j];
+            }
+            b[r] -= f * b[c];
+        }
+    }
+    let mut x = [0.0; 3];
+    for i in (0..m).rev() {
+        let mut s = b[i];
+        for j in i + 1..m {
+            s -= a[i][j] * x[j];
+        }
+        x[i] = s / a[i][i];
+    }
+    Some(x)
+}

@@ -1,0 +1,394 @@
+//! The frictional contact problem of one time step (or of one impact) at velocity level, joint by
+//! joint: Signorini's condition at the ends of every joint and Coulomb's law on the joint.
+//!
+//! Unknowns per joint `k`: the normal impulses `P_R, P_L ≥ 0` at its two ends and the tangential
+//! impulse `T` with `|T| ≤ μ (P_R + P_L)`. Velocities after the impulses:
+//! `v = v_free + M⁻¹ Hᵀ P`, relative velocities `U = H v = W P + b`, `W = H M⁻¹ Hᵀ`.
+//! Conditions (Moreau's velocity-level laws with zero restitution, Acary & Brogliato 2008 §3.9,
+//! §10.1): `0 ≤ U_c ⊥ P_c ≥ 0` at every active end `c`; `T = −μ N sign(U_t)` when the joint
+//! slips, `|T| ≤ μ N` with `U_t = 0` when it sticks, `N = P_R + P_L`. The joint's tangential row is
+//! that of its active end, the mean of the two when both ends are active: one slip velocity per
+//! joint, so that the problem is not degenerate when a joint is closed along a face (the two
+//! corners' tangential rows are then equal: both ends are in contact only while the faces are
+//! parallel, and a rotation about any point of the face line moves the face line only normally).
+//!
+//! Per-joint friction equals per-corner friction `|T_c| ≤ μ P_c`: the Minkowski sum of the two
+//! corner cones is the joint's cone, and both corners of a closed face slip together.
+//!
+//! With every end's normal and the joint's tangential status fixed, the conditions are linear and
+//! `W` is block tridiagonal (a joint couples with its neighbours through the drums they share):
+//! one block LU of 3 × 3 blocks, `O(n)`. The statuses are found by the primal-dual active set
+//! method (the semismooth Newton method on the `min` / Alart–Curnier complementarity functions,
+//! Hintermüller, Ito & Kunisch 2002; Alart & Curnier 1991), warm-started from the previous step,
+//! where they rarely change. It is deterministic and stops after a bounded number of iterations;
+//! when it cycles, the problem goes to the fallbacks of [`super::fallback`] (Lemke's algorithm,
+//! then the nonsmooth Gauss–Seidel iteration). This file sets the problem up; the active set
+//! method is [`super::active_set`].
+
+use super::drums::ContactRows;
+use super::lemke::Lemke;
+
+pub(super) type B3 = [[f64; 3]; 3];
+
+/// Input of one joint.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct JointContacts {
+    /// Whether each end (0: right, 1: left) takes part.
+    pub active: [bool; 2],
+    /// An equality constraint (`U_c = 0`, impulse of either sign) instead of Signorini's.
+    pub bilateral: [bool; 2],
+    /// Rows of each end.
+    pub rows: [ContactRows; 2],
+    /// Coulomb coefficient: `0` frictionless (no tangential impulse), `f64::INFINITY` never slips.
+    pub mu: f64,
+}
+
+/// Slip status of a joint.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Slip {
+    /// No slip (`U_t = 0`).
+    #[default]
+    Stick,
+    /// Slipping with `U_t > 0` (`T = −μN`).
+    Positive,
+    /// Slipping with `U_t < 0` (`T = +μN`).
+    Negative,
+}
+
+impl Slip {
+    pub(super) fn sign(self) -> f64 {
+        match self {
+            Slip::Stick => 0.0,
+            Slip::Positive => 1.0,
+            Slip::Negative => -1.0,
+        }
+    }
+}
+
+/// Contact status of a joint: which ends are closed and how it slips.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct JointStatus {
+    /// Closed (velocity held at zero, compressive impulse) at each end.
+    pub closed: [bool; 2],
+    /// Tangential status (meaningful when an end is closed).
+    pub slip: Slip,
+}
+
+/// How a problem was solved.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct SolveReport {
+    /// Active-set iterations (linear solves).
+    pub iterations: usize,
+    /// Whether Lemke's algorithm had to take over.
+    pub fallback: bool,
+    /// Whether Lemke's algorithm failed too (round-off on a degenerate problem) and the nonsmooth
+    /// Gauss–Seidel iteration gave the answer.
+    pub gauss_seidel: bool,
+    /// Whether that iteration stopped at its cap of sweeps before its tolerance.
+    pub inexact: bool,
+}
+
+/// Why the problem could not be solved (none of the methods).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SolveFailure;
+
+/// Maximum active-set iterations before the fallbacks take over.
+pub(super) const MAX_ITERATIONS: usize = 30;
+
+/// The reduced unknowns and equations of a joint for given statuses.
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct Reduction {
+    /// Number of unknowns (= equations).
+    pub(super) size: usize,
+    /// Rows (0: right normal, 1: left normal, 2: tangent) held at zero velocity.
+    pub(super) rows: [usize; 3],
+    /// Impulse `(P_R, P_L, T)` of a unit of each unknown.
+    pub(super) cols: B3,
+}
+
+/// Workspace and solution of the joint-wise contact problem for a column of `n` drums.
+#[derive(Clone, Debug, Default)]
+pub struct ContactProblem {
+    pub(super) n: usize,
+    /// Inverse masses, `3n`.
+    pub(super) inv_mass: Vec<f64>,
+    /// Jacobian rows of each joint for its upper and lower drum: `[nR, nL, t]`, each `[x, y, θ]`.
+    pub(super) up: Vec<B3>,
+    pub(super) low: Vec<B3>,
+    /// Tangent row weights of each joint's two ends.
+    pub(super) weights: Vec<[f64; 2]>,
+    /// Diagonal blocks of `W`.
+    pub(super) wd: Vec<B3>,
+    /// Off-diagonal blocks: rows of joint `k`, columns of joint `k + 1`.
+    pub(super) wo: Vec<B3>,
+    /// Free relative velocities.
+    pub(super) b: Vec<[f64; 3]>,
+    pub(super) joints: Vec<JointContacts>,
+    pub(super) red: Vec<Reduction>,
+    pub(super) cp: Vec<B3>,
+    pub(super) dinv: Vec<B3>,
+    pub(super) dp: Vec<[f64; 3]>,
+    pub(super) z: Vec<[f64; 3]>,
+    /// Impulses `(P_R, P_L, T)` of every joint.
+    pub(super) p: Vec<[f64; 3]>,
+    /// Relative velocities on the three rows.
+    pub(super) u: Vec<[f64; 3]>,
+    pub(super) history: Vec<u64>,
+    pub(super) next: Vec<JointStatus>,
+    pub(super) viol: Vec<f64>,
+    pub(super) lemke: Lemke,
+}
+
+/// Inverse of the leading `m × m` block (`m ≤ 3`) by the adjugate; `None` when the block is
+/// singular to working precision (|det| below `1e-13` of the product of its rows' norms).
+pub(super) fn invert3(a: &B3, m: usize) -> Option<B3> {
+    let mut inv = [[0.0; 3]; 3];
+    match m {
+        0 => Some(inv),
+        1 => {
+            let d = a[0][0];
+            if d.abs() <= 0.0 || !d.is_finite() {
+                return None;
+            }
+            inv[0][0] = 1.0 / d;
+            Some(inv)
+        }
+        2 => {
+            let det = a[0][0] * a[1][1] - a[0][1] * a[1][0];
+            let scale = ((a[0][0] * a[0][0] + a[0][1] * a[0][1])
+                * (a[1][0] * a[1][0] + a[1][1] * a[1][1]))
+                .sqrt();
+            if !(det.abs() > 1e-13 * scale && det.is_finite()) {
+                return None;
+            }
+            let r = 1.0 / det;
+            inv[0][0] = a[1][1] * r;
+            inv[0][1] = -a[0][1] * r;
+            inv[1][0] = -a[1][0] * r;
+            inv[1][1] = a[0][0] * r;
+            Some(inv)
+        }
+        _ => {
+            let c00 = a[1][1] * a[2][2] - a[1][2] * a[2][1];
+            let c01 = a[1][2] * a[2][0] - a[1][0] * a[2][2];
+            let c02 = a[1][0] * a[2][1] - a[1][1] * a[2][0];
+            let det = a[0][0] * c00 + a[0][1] * c01 + a[0][2] * c02;
+            let norm = |r: &[f64; 3]| (r[0] * r[0] + r[1] * r[1] + r[2] * r[2]).sqrt();
+            let scale = norm(&a[0]) * norm(&a[1]) * norm(&a[2]);
+            if !(det.abs() > 1e-13 * scale && det.is_finite()) {
+                return None;
+            }
+            let r = 1.0 / det;
+            inv[0][0] = c00 * r;
+            inv[1][0] = c01 * r;
+            inv[2][0] = c02 * r;
+            inv[0][1] = (a[0][2] * a[2][1] - a[0][1] * a[2][2]) * r;
+            inv[1][1] = (a[0][0] * a[2][2] - a[0][2] * a[2][0]) * r;
+            inv[2][1] = (a[0][1] * a[2][0] - a[0][0] * a[2][1]) * r;
+            inv[0][2] = (a[0][1] * a[1][2] - a[0][2] * a[1][1]) * r;
+            inv[1][2] = (a[0][2] * a[1][0] - a[0][0] * a[1][2]) * r;
+            inv[2][2] = (a[0][0] * a[1][1] - a[0][1] * a[1][0]) * r;
+            Some(inv)
+        }
+    }
+}
+
+#[inline]
+pub(super) fn dot3(a: &[f64; 3], b: &[f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+impl ContactProblem {
+    /// A workspace for `n` drums with the given masses and moments of inertia.
+    pub fn new(masses: &[f64], inertias: &[f64]) -> ContactProblem {
+        let n = masses.len();
+        let mut inv_mass = Vec::with_capacity(3 * n);
+        for j in 0..n {
+            inv_mass.extend_from_slice(&[1.0 / masses[j], 1.0 / masses[j], 1.0 / inertias[j]]);
+        }
+        let zero = [[0.0; 3]; 3];
+        ContactProblem {
+            n,
+            inv_mass,
+            up: vec![zero; n],
+            low: vec![zero; n],
+            weights: vec![[0.0; 2]; n],
+            wd: vec![zero; n],
+            wo: vec![zero; n],
+            b: vec![[0.0; 3]; n],
+            joints: vec![JointContacts::default(); n],
+            red: vec![Reduction::default(); n],
+            cp: vec![zero; n],
+            dinv: vec![zero; n],
+            dp: vec![[0.0; 3]; n],
+            z: vec![[0.0; 3]; n],
+            p: vec![[0.0; 3]; n],
+            u: vec![[0.0; 3]; n],
+            history: Vec::with_capacity(MAX_ITERATIONS),
+            next: vec![JointStatus::default(); n],
+            viol: vec![0.0; n],
+            lemke: Lemke::default(),
+        }
+    }
+
+    /// Number of joints.
+    pub fn len(&self) -> usize {
+        self.n
+    }
+
+    /// Whether the column is empty.
+    pub fn is_empty(&self) -> bool {
+        self.n == 0
+    }
+
+    /// Weights of the two ends' tangent rows in the joint's tangential row.
+    pub fn tangent_weights(active: [bool; 2]) -> [f64; 2] {
+        match active {
+            [true, true] => [0.5, 0.5],
+            [true, false] => [1.0, 0.0],
+            [false, true] => [0.0, 1.0],
+            [false, false] => [0.0, 0.0],
+        }
+    }
+
+    /// Sets up the problem: the joints' contacts and the free velocities `v_free` (`3n`).
+    pub fn set(&mut self, joints: &[JointContacts], v_free: &[f64]) {
+        let n = self.n;
+        for k in 0..n {
+            let jc = joints[k];
+            self.joints[k] = jc;
+            let w = Self::tangent_weights(jc.active);
+            self.weights[k] = w;
+            let r = &jc.rows;
+            let t = |a: [f64; 3], b: [f64; 3]| {
+                [
+                    w[0] * a[0] + w[1] * b[0],
+                    w[0] * a[1] + w[1] * b[1],
+                    w[0] * a[2] + w[1] * b[2],
+                ]
+            };
+            self.up[k] = [r[0].n_up, r[1].n_up, t(r[0].t_up, r[1].t_up)];
+            self.low[k] = [r[0].n_low, r[1].n_low, t(r[0].t_low, r[1].t_low)];
+        }
+        for k in 0..n {
+            let up = self.up[k];
+            let mu = [
+                self.inv_mass[3 * k],
+                self.inv_mass[3 * k + 1],
+                self.inv_mass[3 * k + 2],
+            ];
+            let vu = [v_free[3 * k], v_free[3 * k + 1], v_free[3 * k + 2]];
+            let mut w = [[0.0; 3]; 3];
+            let mut b = [0.0; 3];
+            let mut mup = [[0.0; 3]; 3];
+            for a in 0..3 {
+                mup[a] = [up[a][0] * mu[0], up[a][1] * mu[1], up[a][2] * mu[2]];
+                b[a] = dot3(&up[a], &vu);
+            }
+            for a in 0..3 {
+                for c in a..3 {
+                    w[a][c] = dot3(&mup[a], &up[c]);
+                }
+            }
+            if k > 0 {
+                let low = self.low[k];
+                let ml = [
+                    self.inv_mass[3 * k - 3],
+                    self.inv_mass[3 * k - 2],
+                    self.inv_mass[3 * k - 1],
+                ];
+                let vl = [v_free[3 * k - 3], v_free[3 * k - 2], v_free[3 * k - 1]];
+                for a in 0..3 {
+                    b[a] += dot3(&low[a], &vl);
+                    let ml_a = [low[a][0] * ml[0], low[a][1] * ml[1], low[a][2] * ml[2]];
+                    for c in a..3 {
+                        w[a][c] += dot3(&ml_a, &low[c]);
+                    }
+                }
+            }
+            for a in 0..3 {
+                for c in 0..a {
+                    w[a][c] = w[c][a];
+                }
+            }
+            self.wd[k] = w;
+            self.b[k] = b;
+            // Coupling with joint k+1 through drum k.
+            if k + 1 < n {
+                let ln = self.low[k + 1];
+                let mut o = [[0.0; 3]; 3];
+                for a in 0..3 {
+                    for c in 0..3 {
+                        o[a][c] = dot3(&mup[a], &ln[c]);
+                    }
+                }
+                self.wo[k] = o;
+            }
+        }
+    }
+
+    /// Replaces the free relative velocities of joint `k` (e.g. by gaps, for a projection of
+    /// positions: then `U = W P + b` is the gap after the displacement `M⁻¹ Hᵀ P`).
+    pub fn set_offsets(&mut self, k: usize, b: [f64; 3]) {
+        self.b[k] = b;
+    }
+
+    /// Impulses `(P_R, P_L, T)` of joint `k`.
+    pub fn impulses(&self, k: usize) -> [f64; 3] {
+        self.p[k]
+    }
+
+    /// Relative velocities after the impulses, `(U_R, U_L, U_t)`, of joint `k`.
+    pub fn rates(&self, k: usize) -> [f64; 3] {
+        self.u[k]
+    }
+
+    /// Free relative velocities `(U_R, U_L, U_t)` of joint `k`.
+    pub fn free_rates(&self, k: usize) -> [f64; 3] {
+        self.b[k]
+    }
+
+    /// Weights of the right and left tangent rows in joint `k`'s tangential row.
+    pub fn weights(&self, k: usize) -> [f64; 2] {
+        self.weights[k]
+    }
+
+    /// Relative velocities `(U_R, U_L, U_t)` of joint `k` on the problem's rows for velocities `v`.
+    pub fn rows_rates(&self, k: usize, v: &[f64]) -> [f64; 3] {
+        let vu = [v[3 * k], v[3 * k + 1], v[3 * k + 2]];
+        let mut u = [0.0; 3];
+        for a in 0..3 {
+            u[a] = dot3(&self.up[k][a], &vu);
+        }
+        if k > 0 {
+            let vl = [v[3 * k - 3], v[3 * k - 2], v[3 * k - 1]];
+            for a in 0..3 {
+                u[a] += dot3(&self.low[k][a], &vl);
+            }
+        }
+        u
+    }
+
+    /// `v = v_free + M⁻¹ Hᵀ P` (`v` holds `v_free` on entry).
+    pub fn apply(&self, v: &mut [f64]) {
+        let n = self.n;
+        for k in 0..n {
+            let p = self.p[k];
+            if p == [0.0; 3] {
+                continue;
+            }
+            let up = &self.up[k];
+            for i in 0..3 {
+                let acc = up[0][i] * p[0] + up[1][i] * p[1] + up[2][i] * p[2];
+                v[3 * k + i] += self.inv_mass[3 * k + i] * acc;
+            }
+            if k > 0 {
+                let low = &self.low[k];
+                for i in 0..3 {
+                    let acc = low[0][i] * p[0] + low[1][i] * p[1] + low[2][i] * p[2];
+                    v[3 * k - 3 + i] += self.inv_mass[3 * k - 3 + i] * acc;
+                }
+            }
+        }
+    }
+}

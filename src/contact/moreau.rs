@@ -1,0 +1,622 @@
+//! One time step of the Moreau–Jean scheme (Jean 1999; Acary & Brogliato 2008, §10.1) on a column
+//! of drums in natural coordinates, with the projection that stops penetration drift (Acary 2013,
+//! CMAME 256) and impacts located inside the step.
+//!
+//! A step of length `h` from `(t, q, v)`:
+//! 1. `v_free = v + h M⁻¹ f(t + θh)`: gravity and the inertial load of the ground acceleration at
+//!    `t + θh` (the loads do not depend on `q` or `v` in natural coordinates). With `θ = ½` this is
+//!    the mean of a record over the step (linear between samples, steps inside sample intervals)
+//!    and exact for a rectangular pulse whose ends fall on steps;
+//! 2. the contact geometry at the step's midpoint, `q + θ h v`;
+//! 3. the index set: the joints' ends in contact (gap below a tolerance) or predicted to close;
+//! 4. one frictional contact problem ([`super::friction`]): `v⁺ = v_free + M⁻¹ Hᵀ P`, Moreau's
+//!    impact law `0 ≤ U⁺_n + e U⁻_n ⊥ P_n ≥ 0` and Coulomb on each joint. At an arriving end the
+//!    restitution is zero (inelastic at the corners). At a persistent contact — an end that
+//!    carried an impulse in the last step and is not arriving — it is one: there `U⁻`, taken on
+//!    the rows of the new midpoint, is only the turning of the contact with the drums (the
+//!    centripetal drift of a pivot, `O(h)`), and the law `U⁺ + U⁻ = 0` is the midpoint rule,
+//!    under which the contact does no work and the pivot stays on its face to `O(h³)` per step.
+//!    With zero restitution there (plain Moreau–Jean), every step of rocking about a corner
+//!    pumps `P h |Ḣ v| / 2` into the column: a first-order energy error (0.6 % of the ground work
+//!    on thesis Fig. 14 at dt = 1 ms), which this removes (3e-5 there, second order);
+//! 5. `q⁺ = q + h ((1 − θ) v + θ v⁺)`;
+//! 6. the projection of `q⁺` in the metric `M` onto the contacts: ends that carried an impulse back
+//!    onto the face they touch, penetrating ends out of it (one Newton step of the constraint,
+//!    velocities unchanged).
+//!
+//! **Impacts located.** An end that approaches a face faster than the ground can change a
+//! velocity in a step (`g h`) is not left to step 4, whose first-order timing would move the
+//! column's potential energy by `m g h |U|` per impact: the step is split at the instant the end
+//! reaches the face (a trial sub-step, then the root of the cubic Hermite interpolant of the gap,
+//! then the sub-step again to that instant) and the impact is applied there by the impact law
+//! below. Slower approaches (chattering, settling, the tail of an accumulation) stay with step 4,
+//! whose error is then `O(h²)`: the accumulation is captured, not enumerated.
+//!
+//! **Impact law.** At an impact instant the velocities jump by the same contact problem with no
+//! load (`v_free = v⁻`): the post-impact velocity is the kinetic-metric projection of `v⁻` onto
+//! the admissible velocities (ends not approaching, no slip where friction holds) — with friction
+//! sticking, the thesis's projection (SPEC §4), and for one block Housner's law. With more than
+//! one impact per closing (`n_impacts`), the thesis's consecutive impacts (SPEC §2): a joint
+//! rocking about one end and landing on the other first lands on `n_impacts − 1` equally spaced
+//! bumps between them, each a projection of the same kind, then on its corner.
+//!
+//! Energy: with `θ = ½` a step obeys exactly `ΔT + ΔV = W_ground + Σ P·U_mid` (`U_mid` the mean of
+//! the relative velocities before and after, on the step's rows), so the contact work splits into
+//! the normal impulses' work at approaching ends (impacts), the tangential impulses' work
+//! (friction), and the normal impulses' work at ends that were not approaching (zero at the
+//! persistent contacts; what is left — an end caught while leaving its face within a step — is
+//! the scheme's error); the projections move `q` against the loads (`f·Δq`). The last two are
+//! the energy errors of the scheme.
+
+use super::drums::{Drums, JointGeometry, DOF_PER_DRUM};
+use super::friction::{ContactProblem, JointContacts, JointStatus, Slip, SolveFailure};
+use crate::ground::GroundMotion;
+use crate::model::column::Column;
+
+/// Options of the scheme.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SchemeOptions {
+    /// θ of the θ-method on velocities (½: no numerical dissipation of the free motion).
+    pub theta: f64,
+    /// Consecutive impacts per landing of a rocking joint (1 = Housner; 2 = one bump in the
+    /// middle, the thesis's recommendation).
+    pub n_impacts: u32,
+    /// Locate fast impacts inside the step (see the module documentation).
+    pub locate_impacts: bool,
+    /// Acceleration of gravity (m/s²).
+    pub gravity: f64,
+}
+
+impl Default for SchemeOptions {
+    fn default() -> SchemeOptions {
+        SchemeOptions {
+            theta: 0.5,
+            n_impacts: 1,
+            locate_impacts: true,
+            gravity: crate::model::column::GRAVITY,
+        }
+    }
+}
+
+/// Energy accounts of the scheme (J), accumulated over the steps.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct EnergyAccounts {
+    /// Work of the inertial load of the ground motion along the path, `∫ −Σ m a_g dx`.
+    pub ground_work: f64,
+    /// Energy dissipated by the normal impulses at approaching ends (impacts).
+    pub impact: f64,
+    /// Energy dissipated by friction (tangential impulses).
+    pub friction: f64,
+    /// Work of the normal impulses at ends that were not approaching, with the sign of a
+    /// dissipation: the scheme's error at persistent contacts (`O(h)` in total).
+    pub persistent_contact: f64,
+    /// Work of the loads on the projections' displacements (`Σ f·Δq`).
+    pub projection: f64,
+}
+
+/// One impact located and applied inside a step.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LocatedImpact {
+    /// Time (s).
+    pub t: f64,
+    /// Joint.
+    pub joint: usize,
+    /// End (0 right, 1 left) that landed.
+    pub end: usize,
+    /// Kinetic energy before and after (J).
+    pub kinetic_before: f64,
+    /// Kinetic energy after (J).
+    pub kinetic_after: f64,
+}
+
+/// Counters of the work done.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct StepCounters {
+    /// Sub-steps integrated (accepted).
+    pub substeps: u64,
+    /// Steps taken by the rest shortcut (column closed, sticking and at rest).
+    pub rest_steps: u64,
+    /// Contact problems solved.
+    pub solves: u64,
+    /// Active-set iterations in total.
+    pub iterations: u64,
+    /// Problems that went to Lemke's algorithm.
+    pub fallbacks: u64,
+    /// Projections of the positions.
+    pub projections: u64,
+    /// Impacts located inside steps.
+    pub located_impacts: u64,
+    /// Active-set iterations of the impact problems.
+    pub impact_iterations: u64,
+    /// Problems whose last fallback (nonsmooth Gauss–Seidel) stopped at its cap of sweeps.
+    pub inexact: u64,
+}
+
+/// Why a step failed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum StepError {
+    /// The contact problem could not be solved.
+    Contact,
+    /// A drum slid off the one below (joint index): the joint has no overlap left.
+    SlidOff(usize),
+}
+
+impl From<SolveFailure> for StepError {
+    fn from(_: SolveFailure) -> StepError {
+        StepError::Contact
+    }
+}
+
+/// Landings of open ends faster than this fraction of `g h` are located inside the step.
+pub(super) const SPLIT_OPEN: f64 = 0.01;
+/// Ends touching their face and approaching faster than this fraction of `g h` get the impact
+/// law at once.
+pub(super) const SPLIT_TOUCHING: f64 = 0.1;
+
+/// Most impacts located in one step.
+pub(super) const MAX_SPLITS: usize = 8;
+
+/// State and workspace of the scheme for one column.
+#[derive(Clone, Debug)]
+pub struct Stepper {
+    pub(super) drums: Drums,
+    pub(super) mu: Vec<f64>,
+    pub(super) options: SchemeOptions,
+    /// Time (s).
+    pub t: f64,
+    /// Positions `x, y, θ` per drum.
+    pub q: Vec<f64>,
+    /// Velocities.
+    pub v: Vec<f64>,
+    /// Contact statuses of the joints (warm start and the last solution).
+    pub statuses: Vec<JointStatus>,
+    /// Contact geometry at `q`.
+    pub geometry: Vec<JointGeometry>,
+    /// Normal impulses (sum of both ends) and tangential impulse of each joint in the last step.
+    pub joint_impulses: Vec<[f64; 2]>,
+    /// Energy accounts.
+    pub energy: EnergyAccounts,
+    /// Counters.
+    pub counters: StepCounters,
+    /// Impacts located in the last step.
+    pub impacts: Vec<LocatedImpact>,
+    pub(super) problem: ContactProblem,
+    pub(super) projection: ContactProblem,
+    pub(super) contacts: Vec<JointContacts>,
+    pub(super) proj_statuses: Vec<JointStatus>,
+    pub(super) predicted: Vec<JointGeometry>,
+    pub(super) v_free: Vec<f64>,
+    pub(super) q_next: Vec<f64>,
+    pub(super) dq: Vec<f64>,
+    pub(super) saved: Option<Box<Saved>>,
+    /// Contact tolerance on gaps (m).
+    pub(super) contact_gap: f64,
+    /// Projection tolerance on gaps (m).
+    pub(super) projection_gap: f64,
+    pub(super) carried: Vec<[bool; 2]>,
+    pub(super) flags: Vec<[bool; 2]>,
+    pub(super) shifts: Vec<[f64; 3]>,
+    pub(super) landing: Vec<[bool; 2]>,
+    pub(super) start_rates: Vec<[[f64; 2]; 2]>,
+    pub(super) missed: Vec<[Option<f64>; 2]>,
+    pub(super) watching: bool,
+    pub(super) missed_found: Option<f64>,
+    /// Approach speed above which a landing is located (m/s): a tenth of what gravity gives in a
+    /// step.
+    pub(super) v_split: f64,
+    pub(super) v_touch: f64,
+}
+
+#[derive(Clone, Debug)]
+pub(super) struct Saved {
+    pub(super) t: f64,
+    pub(super) q: Vec<f64>,
+    pub(super) v: Vec<f64>,
+    pub(super) statuses: Vec<JointStatus>,
+    pub(super) energy: EnergyAccounts,
+    pub(super) counters: StepCounters,
+    pub(super) joint_impulses: Vec<[f64; 2]>,
+    pub(super) carried: Vec<[bool; 2]>,
+}
+
+impl Stepper {
+    /// A stepper for `column` with friction `mu` per joint, starting straight and at rest.
+    pub fn new(column: &Column, mu: Vec<f64>, options: SchemeOptions) -> Stepper {
+        let drums = Drums::new(column);
+        let n = drums.len();
+        assert_eq!(mu.len(), n, "one friction coefficient per joint");
+        let masses: Vec<f64> = (0..n).map(|j| drums.mass(j)).collect();
+        let inertias: Vec<f64> = (0..n).map(|j| drums.inertia(j)).collect();
+        let mut size = f64::INFINITY;
+        for j in 0..n {
+            size = size.min(drums.half_height(j)).min(drums.upper_extent(j));
+        }
+        let q = drums.rest_positions();
+        let mut s = Stepper {
+            mu,
+            options,
+            t: 0.0,
+            v: vec![0.0; DOF_PER_DRUM * n],
+            statuses: vec![
+                JointStatus {
+                    closed: [true, true],
+                    ..JointStatus::default()
+                };
+                n
+            ],
+            geometry: vec![JointGeometry::default(); n],
+            joint_impulses: vec![[0.0; 2]; n],
+            energy: EnergyAccounts::default(),
+            counters: StepCounters::default(),
+            impacts: Vec::with_capacity(MAX_SPLITS),
+            problem: ContactProblem::new(&masses, &inertias),
+            projection: ContactProblem::new(&masses, &inertias),
+            contacts: vec![JointContacts::default(); n],
+            proj_statuses: vec![JointStatus::default(); n],
+            predicted: vec![JointGeometry::default(); n],
+            v_free: vec![0.0; DOF_PER_DRUM * n],
+            q_next: vec![0.0; DOF_PER_DRUM * n],
+            dq: vec![0.0; DOF_PER_DRUM * n],
+            saved: None,
+            contact_gap: 1e-9 * size,
+            projection_gap: 1e-10 * size,
+            carried: vec![[false; 2]; n],
+            flags: vec![[false; 2]; n],
+            shifts: vec![[0.0; 3]; n],
+            landing: vec![[false; 2]; n],
+            start_rates: vec![[[0.0; 2]; 2]; n],
+            missed: vec![[None; 2]; n],
+            watching: false,
+            missed_found: None,
+            v_split: 0.0,
+            v_touch: 0.0,
+            q,
+            drums,
+        };
+        s.update_geometry();
+        s
+    }
+
+    /// The drums.
+    pub fn drums(&self) -> &Drums {
+        &self.drums
+    }
+
+    /// Friction coefficient of each joint.
+    pub fn friction(&self) -> &[f64] {
+        &self.mu
+    }
+
+    /// Options.
+    pub fn options(&self) -> &SchemeOptions {
+        &self.options
+    }
+
+    /// Gap below which an end is in contact (m).
+    pub fn contact_gap(&self) -> f64 {
+        self.contact_gap
+    }
+
+    /// Sets positions and velocities (e.g. from a thesis state); statuses from the gaps.
+    pub fn set_state(&mut self, t: f64, q: &[f64], v: &[f64]) {
+        self.t = t;
+        self.q.copy_from_slice(q);
+        self.v.copy_from_slice(v);
+        self.update_geometry();
+        for k in 0..self.drums.len() {
+            let g = &self.geometry[k];
+            self.statuses[k] = JointStatus {
+                closed: [
+                    g.ends[0].gap <= self.contact_gap,
+                    g.ends[1].gap <= self.contact_gap,
+                ],
+                ..JointStatus::default()
+            };
+        }
+    }
+
+    pub(super) fn update_geometry(&mut self) {
+        self.drums.joints_into(&self.q, &mut self.geometry);
+    }
+
+    /// Kinetic energy (J).
+    pub fn kinetic_energy(&self) -> f64 {
+        self.drums.kinetic_energy(&self.v)
+    }
+
+    /// Potential energy above the straight column (J).
+    pub fn potential_energy(&self) -> f64 {
+        self.drums.potential_energy(&self.q, self.options.gravity)
+    }
+
+    pub(super) fn at_rest(&self) -> bool {
+        self.v.iter().all(|&x| x == 0.0)
+            && self
+                .statuses
+                .iter()
+                .all(|s| s.closed == [true, true] && s.slip == Slip::Stick)
+            && self.geometry.iter().all(|g| {
+                g.ends[0].gap.abs() <= self.contact_gap && g.ends[1].gap.abs() <= self.contact_gap
+            })
+    }
+
+    /// The rest shortcut: a column closed, sticking and at rest stays so if the impulses that
+    /// hold it (statics of the part above each joint, top down) are admissible. This is the
+    /// solution of the step's contact problem then (the Jacobian of a closed, sticking column is
+    /// square and invertible, so the impulses are unique). Returns whether it applied.
+    pub(super) fn rest_step(&mut self, h: f64, a_theta: f64) -> bool {
+        let n = self.drums.len();
+        let g = self.options.gravity;
+        // Suffix sums of the loads' impulse on the part above each joint and of its moment.
+        let (mut fx, mut fy) = (0.0, 0.0);
+        let (mut sx, mut sy) = (0.0, 0.0); // Σ m c
+        for k in (0..n).rev() {
+            let m = self.drums.mass(k);
+            fx += m * a_theta * h; // −h f_x = h m a
+            fy += m * g * h;
+            sx += m * self.q[3 * k];
+            sy += m * self.q[3 * k + 1];
+            let geo = &self.geometry[k];
+            let (rr, rl) = (geo.ends[0].point, geo.ends[1].point);
+            let nrm = geo.ends[0].normal;
+            let t = [nrm[1], -nrm[0]];
+            // The contact impulse F = (fx, fy) and moment about the left end: the loads' impulse
+            // is −h Σ m (a, g) applied at the centres, so the contact's moment about r_L must be
+            // −Σ (c − r_L) × (−h m (a, g)) = Σ (c − r_L) × (h m (a, g)).
+            let mass_above = fy / (g * h);
+            let cx = sx - mass_above * rl[0];
+            let cy = sy - mass_above * rl[1];
+            // Σ m (c − r_L) × (a, g) h = h (cx g − cy a) with cx, cy mass-weighted.
+            let mo = h * (cx * g - cy * a_theta);
+            let fn_ = fx * nrm[0] + fy * nrm[1];
+            let ft = fx * t[0] + fy * t[1];
+            let d = [rr[0] - rl[0], rr[1] - rl[1]];
+            let dn = d[0] * nrm[1] - d[1] * nrm[0];
+            let dt = d[0] * t[1] - d[1] * t[0];
+            if dn.abs() <= 0.0 {
+                return false;
+            }
+            let pr = (mo - 0.5 * ft * dt) / dn;
+            let pl = fn_ - pr;
+            if pr < 0.0 || pl < 0.0 || ft.abs() > self.mu[k] * fn_ {
+                return false;
+            }
+        }
+        self.t += h;
+        self.counters.rest_steps += 1;
+        true
+    }
+
+    /// Advances by one step of length `h`.
+    pub fn step(&mut self, h: f64, motion: &dyn GroundMotion) -> Result<(), StepError> {
+        self.impacts.clear();
+        let theta = self.options.theta;
+        if self.at_rest() {
+            let a = motion.acceleration(self.t + theta * h);
+            if self.rest_step(h, a) {
+                return Ok(());
+            }
+        }
+        let t_end = self.t + h;
+        self.v_split = SPLIT_OPEN * self.options.gravity * h;
+        self.v_touch = SPLIT_TOUCHING * self.options.gravity * h;
+        let mut splits = 0;
+        loop {
+            let remaining = t_end - self.t;
+            if remaining <= 1e-12 * h {
+                self.t = t_end;
+                return Ok(());
+            }
+            if self.options.locate_impacts && splits < MAX_SPLITS {
+                if let Some((tau, _)) = self.next_landing(remaining) {
+                    splits += 1;
+                    self.locate_and_impact(tau, remaining, motion)?;
+                    continue;
+                }
+            }
+            let watch = self.options.locate_impacts && splits < MAX_SPLITS;
+            if watch {
+                self.save();
+                self.record_start_rates();
+            }
+            self.watching = watch;
+            let result = self.substep(remaining, motion, None);
+            self.watching = false;
+            result?;
+            if let Some(tau) = self.missed_found.take() {
+                // A landing the linear prediction missed (the end accelerated onto its face):
+                // back to the start of the sub-step, and locate it.
+                self.restore();
+                splits += 1;
+                let mut landing = std::mem::take(&mut self.landing);
+                self.missed_set(tau, remaining, &mut landing);
+                let result = self.integrate_and_impact(tau, &landing, motion);
+                self.landing = landing;
+                result?;
+                continue;
+            }
+            self.t = t_end;
+            return Ok(());
+        }
+    }
+
+    pub(super) fn loads(&self, a_g: f64, j: usize) -> [f64; 3] {
+        let m = self.drums.mass(j);
+        [-m * a_g, -m * self.options.gravity, 0.0]
+    }
+
+    /// Fills `contacts` for the ends flagged in `self.flags` with the rows of the predicted
+    /// geometry.
+    pub(super) fn fill_contacts(&mut self) {
+        for k in 0..self.drums.len() {
+            let geo = &self.predicted[k];
+            self.contacts[k] = JointContacts {
+                active: self.flags[k],
+                bilateral: [false; 2],
+                rows: [geo.ends[0].rows, geo.ends[1].rows],
+                mu: self.mu[k],
+            };
+        }
+    }
+
+    /// Adds the contact work of the solved problem to the accounts: `−P·U_mid` per row, with
+    /// `U_before` the rows' rates of the velocities before. In an impact (`impact`) all of it is
+    /// impact dissipation; in a step, the normal work at approaching ends and the tangential work
+    /// of a sticking joint with an approaching end is, the tangential work of a slipping joint is
+    /// friction, the rest is the scheme's work at persistent contacts.
+    pub(super) fn account_contact_work(&mut self, v_before: &[f64], impact: bool) {
+        let n = self.drums.len();
+        for k in 0..n {
+            let p = self.problem.impulses(k);
+            self.joint_impulses[k] = [p[0] + p[1], p[2]];
+            if p == [0.0; 3] {
+                continue;
+            }
+            let ua = self.problem.rates(k);
+            let sh = self.shifts[k];
+            let ua = [ua[0] - sh[0], ua[1] - sh[1], ua[2] - sh[2]];
+            let ub = self.problem.rows_rates(k, v_before);
+            let mut approaching = false;
+            for c in 0..2 {
+                if p[c] != 0.0 {
+                    let w = -p[c] * 0.5 * (ub[c] + ua[c]);
+                    if impact || ub[c] < 0.0 {
+                        approaching = true;
+                        self.energy.impact += w;
+                    } else {
+                        self.energy.persistent_contact += w;
+                    }
+                }
+            }
+            if p[2] != 0.0 {
+                let w = -p[2] * 0.5 * (ub[2] + ua[2]);
+                if self.statuses[k].slip != Slip::Stick {
+                    self.energy.friction += w;
+                } else if approaching {
+                    self.energy.impact += w;
+                } else {
+                    self.energy.persistent_contact += w;
+                }
+            }
+        }
+    }
+
+    /// One Moreau–Jean sub-step of length `h`; `excluded` ends are kept out of the index set (the
+    /// landing ends before their located impact).
+    pub(super) fn substep(
+        &mut self,
+        h: f64,
+        motion: &dyn GroundMotion,
+        excluded: Option<&[[bool; 2]]>,
+    ) -> Result<(), StepError> {
+        let n = self.drums.len();
+        let theta = self.options.theta;
+        let a = motion.acceleration(self.t + theta * h);
+        let a1 = motion.acceleration(self.t + h);
+        // Free velocities and the geometry of the step's midpoint (θ).
+        for j in 0..n {
+            let f = self.loads(a, j);
+            let inv = [
+                1.0 / self.drums.mass(j),
+                1.0 / self.drums.mass(j),
+                1.0 / self.drums.inertia(j),
+            ];
+            for i in 0..3 {
+                self.v_free[3 * j + i] = self.v[3 * j + i] + h * inv[i] * f[i];
+                self.q_next[3 * j + i] = self.q[3 * j + i] + theta * h * self.v[3 * j + i];
+            }
+        }
+        self.drums.joints_into(&self.q_next, &mut self.predicted);
+        // The index set: ends touching their face and ends predicted (linearly) to close.
+        let eps = self.contact_gap;
+        for k in 0..n {
+            for c in 0..2 {
+                let e = &self.geometry[k].ends[c];
+                let closing = || e.gap + h * self.drums.rates(&e.rows, &self.v, k).0 <= 0.0;
+                self.flags[k][c] =
+                    !excluded.is_some_and(|e| e[k][c]) && (e.gap <= eps || closing());
+            }
+        }
+        self.fill_contacts();
+        self.problem.set(&self.contacts, &self.v_free);
+        // Persistent contacts: an end that carried an impulse in the last step and is not
+        // arriving (faster than `v_touch`) obeys Moreau's law with restitution one,
+        // `0 ≤ U⁺ + U⁻ ⊥ P ≥ 0`: its relative velocity before the step, on the rows of the
+        // step's midpoint, is only the turning of the contact with the drums, and the midpoint
+        // rule makes the contact do no work (Acary 2016, the energy of the θ = ½ scheme). A
+        // joint that stuck likewise keeps its mean slip rate at zero. Arrivals are impacts
+        // (restitution zero).
+        for k in 0..n {
+            let ub = self.problem.rows_rates(k, &self.v);
+            let mut shift = [0.0; 3];
+            for c in 0..2 {
+                if self.contacts[k].active[c] && self.carried[k][c] && ub[c] >= -self.v_touch {
+                    shift[c] = ub[c];
+                }
+            }
+            if (shift[0] != 0.0 || shift[1] != 0.0) && self.statuses[k].slip == Slip::Stick {
+                shift[2] = ub[2];
+            }
+            self.shifts[k] = shift;
+            if shift != [0.0; 3] {
+                let b = self.problem.free_rates(k);
+                self.problem
+                    .set_offsets(k, [b[0] + shift[0], b[1] + shift[1], b[2] + shift[2]]);
+            }
+        }
+        let report = self.problem.solve(&mut self.statuses)?;
+        self.counters.solves += 1;
+        self.counters.iterations += report.iterations as u64;
+        self.counters.fallbacks += report.fallback as u64;
+        self.counters.inexact += report.inexact as u64;
+        let mut v_new = std::mem::take(&mut self.v_free);
+        self.problem.apply(&mut v_new);
+        // A column closed and sticking everywhere comes to rest (H v = 0 with H invertible):
+        // the velocities left by the persistent contacts' law are removed, their energy booked
+        // as impact dissipation.
+        let all_stuck = (0..n).all(|k| {
+            self.contacts[k].active == [true, true]
+                && self.statuses[k].closed == [true, true]
+                && self.statuses[k].slip == Slip::Stick
+        });
+        if all_stuck {
+            self.energy.impact += self.drums.kinetic_energy(&v_new);
+            v_new.iter_mut().for_each(|x| *x = 0.0);
+        }
+        // Positions, ground work, contact work.
+        let mut work = 0.0;
+        for j in 0..n {
+            for i in 0..3 {
+                let vt = (1.0 - theta) * self.v[3 * j + i] + theta * v_new[3 * j + i];
+                self.q_next[3 * j + i] = self.q[3 * j + i] + h * vt;
+            }
+            let dx = self.q_next[3 * j] - self.q[3 * j];
+            work += -self.drums.mass(j) * a * dx;
+        }
+        self.energy.ground_work += work;
+        let before = std::mem::replace(&mut self.v, v_new);
+        self.account_contact_work(&before, false);
+        self.v_free = before;
+        std::mem::swap(&mut self.q, &mut self.q_next);
+        // Ends that carried an impulse go back onto their faces.
+        for k in 0..n {
+            let st = self.statuses[k];
+            let p = self.problem.impulses(k);
+            self.carried[k] = [
+                self.contacts[k].active[0] && st.closed[0] && p[0] > 0.0,
+                self.contacts[k].active[1] && st.closed[1] && p[1] > 0.0,
+            ];
+        }
+        self.t += h;
+        self.update_geometry();
+        if self.watching {
+            if let Some(tau) = self.missed_landing(h) {
+                self.missed_found = Some(tau);
+                return Ok(());
+            }
+        }
+        self.project(a1, true)?;
+        self.counters.substeps += 1;
+        Ok(())
+    }
+}

@@ -1,0 +1,632 @@
+//! A whole time history of a drum column with the Moreau–Jean scheme ([`super::moreau`]): options,
+//! the joints' modes and their events (opening, impact, slip start and stop, lift-off, landing),
+//! the stops (end of the motion, overturning, a drum slid off, or, on request, the first slip or
+//! lift-off as the thesis's driver does), peaks, slips and the energy balance.
+
+use std::fmt;
+
+use super::moreau::{EnergyAccounts, SchemeOptions, StepCounters, StepError, Stepper};
+use crate::ground::GroundMotion;
+use crate::model::column::Column;
+
+/// What a sliding joint does.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum OnSliding {
+    /// Stop the run at the first slip (the thesis's driver; its default).
+    #[default]
+    Stop,
+    /// Let the joint slide (Coulomb).
+    Slide,
+}
+
+/// What a joint whose normal force would turn tensile does.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum OnTension {
+    /// Stop the run at the first lift-off (the thesis's driver; its default).
+    #[default]
+    Stop,
+    /// The part above lifts off and flies until it lands.
+    Fly,
+}
+
+/// What a run keeps.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct DrumRecording {
+    /// Keep the state every `k` steps (plus the start and the end); `None`: no history.
+    pub history_every: Option<usize>,
+    /// Keep the events.
+    pub events: bool,
+}
+
+impl Default for DrumRecording {
+    fn default() -> DrumRecording {
+        DrumRecording {
+            history_every: None,
+            events: true,
+        }
+    }
+}
+
+/// Options of a drum-column run.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DrumOptions {
+    /// Time step (s).
+    pub dt: f64,
+    /// Simulated duration (s).
+    pub duration: f64,
+    /// Coulomb coefficient μ of every joint (`f64::INFINITY`: no sliding).
+    pub friction: f64,
+    /// μ per joint, overriding `friction` (length `n`).
+    pub joint_friction: Option<Vec<f64>>,
+    /// Sliding joints: stop or slide.
+    pub on_sliding: OnSliding,
+    /// Tensile joints: stop or fly.
+    pub on_tension: OnTension,
+    /// The scheme (θ, consecutive impacts, impact location, gravity).
+    pub scheme: SchemeOptions,
+    /// Do not stop at static tipping; stop when a drum has rotated by `π/2`.
+    pub continue_until_fallen: bool,
+    /// What to keep.
+    pub record: DrumRecording,
+    /// Initial interface angles (thesis convention: negative about the right corner), at rest.
+    pub initial_angles: Option<Vec<f64>>,
+}
+
+impl Default for DrumOptions {
+    fn default() -> DrumOptions {
+        DrumOptions {
+            dt: 1e-3,
+            duration: 10.0,
+            friction: 0.7,
+            joint_friction: None,
+            on_sliding: OnSliding::Slide,
+            on_tension: OnTension::Fly,
+            scheme: SchemeOptions::default(),
+            continue_until_fallen: false,
+            record: DrumRecording::default(),
+            initial_angles: None,
+        }
+    }
+}
+
+/// Why options were refused.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DrumOptionError {
+    /// The field.
+    pub field: &'static str,
+    /// The value, printed.
+    pub value: String,
+    /// The rule it breaks.
+    pub rule: &'static str,
+}
+
+impl fmt::Display for DrumOptionError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{} = {}: {}", self.field, self.value, self.rule)
+    }
+}
+
+impl std::error::Error for DrumOptionError {}
+
+fn bad(field: &'static str, value: impl fmt::Debug, rule: &'static str) -> DrumOptionError {
+    DrumOptionError {
+        field,
+        value: format!("{value:?}"),
+        rule,
+    }
+}
+
+impl DrumOptions {
+    /// Checks every field; the error names it.
+    pub fn validate(&self, column: &Column) -> Result<(), DrumOptionError> {
+        let n = column.n_interfaces();
+        if !(self.dt.is_finite() && self.dt > 0.0) {
+            return Err(bad("dt", self.dt, "must be finite and > 0"));
+        }
+        if !(self.duration.is_finite() && self.duration >= 0.0) {
+            return Err(bad("duration", self.duration, "must be finite and >= 0"));
+        }
+        if self.duration / self.dt > 1e10 {
+            return Err(bad("dt", self.dt, "more than 1e10 steps for the duration"));
+        }
+        if self.friction.is_nan() || self.friction <= 0.0 {
+            return Err(bad(
+                "friction",
+                self.friction,
+                "must be > 0 (infinity: no sliding)",
+            ));
+        }
+        if let Some(mu) = &self.joint_friction {
+            if mu.len() != n {
+                return Err(bad("joint_friction", mu, "needs one value per joint"));
+            }
+            if mu.iter().any(|m| m.is_nan() || *m <= 0.0) {
+                return Err(bad("joint_friction", mu, "every value must be > 0"));
+            }
+        }
+        let s = &self.scheme;
+        if !(s.theta.is_finite() && (0.5..=1.0).contains(&s.theta)) {
+            return Err(bad("scheme.theta", s.theta, "must be in [0.5, 1]"));
+        }
+        if s.n_impacts == 0 || s.n_impacts > 100 {
+            return Err(bad("scheme.n_impacts", s.n_impacts, "must be in 1..=100"));
+        }
+        if !(s.gravity.is_finite() && s.gravity > 0.0) {
+            return Err(bad("scheme.gravity", s.gravity, "must be finite and > 0"));
+        }
+        if self.record.history_every == Some(0) {
+            return Err(bad("record.history_every", 0, "must be >= 1"));
+        }
+        if let Some(a) = &self.initial_angles {
+            if a.len() != n {
+                return Err(bad("initial_angles", a, "needs one angle per interface"));
+            }
+            if a.iter()
+                .any(|x| !(x.is_finite() && x.abs() < 0.5 * std::f64::consts::PI))
+            {
+                return Err(bad(
+                    "initial_angles",
+                    a,
+                    "angles must be finite, |angle| < π/2",
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    fn mu(&self, n: usize) -> Vec<f64> {
+        match &self.joint_friction {
+            Some(m) => m.clone(),
+            None => vec![self.friction; n],
+        }
+    }
+}
+
+/// Contact mode of a joint.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum JointMode {
+    /// Both ends in contact.
+    Closed,
+    /// Only the right end in contact (the thesis's `phĭ`, status −1).
+    RockingRight,
+    /// Only the left end in contact (`phî`, status +1).
+    RockingLeft,
+    /// Neither end in contact: the part above flies.
+    Flying,
+}
+
+impl JointMode {
+    /// The thesis's status (−1 right pivot, 0 closed, +1 left pivot); `None` in flight.
+    pub fn status(self) -> Option<i8> {
+        match self {
+            JointMode::Closed => Some(0),
+            JointMode::RockingRight => Some(-1),
+            JointMode::RockingLeft => Some(1),
+            JointMode::Flying => None,
+        }
+    }
+}
+
+/// Kinds of events.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum DrumEventKind {
+    /// A closed joint opened (rocking starts).
+    Opening,
+    /// A rocking joint landed on its other end (or closed).
+    Impact,
+    /// A joint started to slip.
+    SlipStart,
+    /// A joint stopped slipping.
+    SlipStop,
+    /// A joint opened at both ends: the part above flies.
+    LiftOff,
+    /// A flying joint touched down.
+    Landing,
+    /// The part above a joint tipped beyond its pivot.
+    Overturned,
+}
+
+impl DrumEventKind {
+    /// Name used in outputs (`slip_start`, …).
+    pub fn name(self) -> &'static str {
+        match self {
+            DrumEventKind::Opening => "opening",
+            DrumEventKind::Impact => "impact",
+            DrumEventKind::SlipStart => "slip_start",
+            DrumEventKind::SlipStop => "slip_stop",
+            DrumEventKind::LiftOff => "lift_off",
+            DrumEventKind::Landing => "landing",
+            DrumEventKind::Overturned => "overturned",
+        }
+    }
+}
+
+/// One event.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DrumEvent {
+    /// Time (s): the end of the step in which it was seen (a located impact: its instant).
+    pub t: f64,
+    /// Kind.
+    pub kind: DrumEventKind,
+    /// Joint.
+    pub joint: usize,
+}
+
+/// Why a run stopped.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum DrumStop {
+    /// The requested duration was simulated.
+    Duration,
+    /// Static tipping of the part above this joint.
+    Overturned {
+        /// Joint.
+        joint: usize,
+    },
+    /// A drum rotated by `π/2` (with `continue_until_fallen`).
+    Fallen {
+        /// The drum.
+        drum: usize,
+    },
+    /// A drum slid off the one below: no overlap left at this joint.
+    SlidOff {
+        /// Joint.
+        joint: usize,
+    },
+    /// A joint slipped, with [`OnSliding::Stop`].
+    Sliding {
+        /// Joint.
+        joint: usize,
+    },
+    /// A joint lifted off, with [`OnTension::Stop`].
+    Tension {
+        /// Joint.
+        joint: usize,
+    },
+}
+
+/// Energy balance of a run (J). Exact identity of the scheme:
+/// `ground_work = Δpotential + kinetic_end + impact + friction + persistent_contact + projection`
+/// up to round-off; the last two are the scheme's energy errors.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct DrumEnergy {
+    /// Potential energy at the end minus at the start.
+    pub potential_change: f64,
+    /// Kinetic energy at the end minus at the start.
+    pub kinetic_change: f64,
+    /// Accounts of the scheme.
+    pub accounts: EnergyAccounts,
+}
+
+impl DrumEnergy {
+    /// `ground_work − Δpotential − Δkinetic − impact − friction`: the energy error of the run
+    /// (the scheme's persistent-contact work and projections plus round-off).
+    pub fn residual(&self) -> f64 {
+        let a = &self.accounts;
+        a.ground_work - self.potential_change - self.kinetic_change - a.impact - a.friction
+    }
+
+    /// The residual left once the scheme's own error terms are counted: round-off.
+    pub fn closure(&self) -> f64 {
+        self.residual() - self.accounts.persistent_contact - self.accounts.projection
+    }
+
+    /// The scale the residual is measured against: the largest of the energies involved.
+    pub fn scale(&self) -> f64 {
+        let a = &self.accounts;
+        a.ground_work
+            .abs()
+            .max(a.impact.abs() + a.friction.abs())
+            .max(self.potential_change.abs())
+            .max(self.kinetic_change.abs())
+            .max(1e-300)
+    }
+}
+
+/// Kept states.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct DrumHistory {
+    /// Number of drums.
+    pub n: usize,
+    /// Times (s).
+    pub t: Vec<f64>,
+    /// `x, y, θ` per drum per sample.
+    pub q: Vec<f64>,
+    /// Slip per joint per sample (m).
+    pub slip: Vec<f64>,
+}
+
+/// Result of a run.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DrumOutcome {
+    /// Why it stopped.
+    pub stop: DrumStop,
+    /// Time reached (s).
+    pub t_end: f64,
+    /// Overturned: static tipping, fallen, or slid off.
+    pub overturned: bool,
+    /// Largest absolute rotation of each drum (rad).
+    pub peak_rotation: Vec<f64>,
+    /// Largest absolute slip of each joint (m).
+    pub peak_slip: Vec<f64>,
+    /// Slip of each joint at the end (m, signed: + when the upper face moved to +x).
+    pub residual_slip: Vec<f64>,
+    /// Largest absolute horizontal displacement of the top drum's centre (m).
+    pub peak_top_displacement: f64,
+    /// Energy balance.
+    pub energy: DrumEnergy,
+    /// Number of events of each kind (opening, impact, slip_start, slip_stop, lift_off, landing,
+    /// overturned), counted even when the events are not kept.
+    pub event_counts: [usize; 7],
+    /// Events (when kept).
+    pub events: Vec<DrumEvent>,
+    /// History (when kept).
+    pub history: Option<DrumHistory>,
+    /// Modes of the joints at the end.
+    pub modes_end: Vec<JointMode>,
+    /// Work counters.
+    pub counters: StepCounters,
+}
+
+/// Why a run failed.
+#[derive(Clone, Debug, PartialEq)]
+pub enum DrumError {
+    /// Bad options.
+    Option(DrumOptionError),
+    /// The contact problem could not be solved at this time (s).
+    Contact {
+        /// Time.
+        t: f64,
+    },
+}
+
+impl fmt::Display for DrumError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            DrumError::Option(e) => write!(f, "invalid drum option {e}"),
+            DrumError::Contact { t } => write!(f, "contact problem unsolvable at t = {t} s"),
+        }
+    }
+}
+
+impl std::error::Error for DrumError {}
+
+const KINDS: [DrumEventKind; 7] = [
+    DrumEventKind::Opening,
+    DrumEventKind::Impact,
+    DrumEventKind::SlipStart,
+    DrumEventKind::SlipStop,
+    DrumEventKind::LiftOff,
+    DrumEventKind::Landing,
+    DrumEventKind::Overturned,
+];
+
+/// Modes of the joints from the stepper's geometry and statuses.
+fn modes(stepper: &Stepper, out: &mut [JointMode], slipping: &mut [bool]) {
+    let eps = stepper.contact_gap();
+    for (k, g) in stepper.geometry.iter().enumerate() {
+        let r = g.ends[0].gap <= eps;
+        let l = g.ends[1].gap <= eps;
+        out[k] = match (r, l) {
+            (true, true) => JointMode::Closed,
+            (true, false) => JointMode::RockingRight,
+            (false, true) => JointMode::RockingLeft,
+            (false, false) => JointMode::Flying,
+        };
+        let st = stepper.statuses[k];
+        slipping[k] = out[k] != JointMode::Flying
+            && st.slip != super::friction::Slip::Stick
+            && stepper.joint_impulses[k][0] > 0.0;
+    }
+}
+
+/// Runs a time history of `column` under `motion` with the Moreau–Jean scheme. `progress` is
+/// called with the fraction done (about every 1 %).
+pub fn simulate(
+    column: &Column,
+    motion: &dyn GroundMotion,
+    options: &DrumOptions,
+    mut progress: Option<&mut dyn FnMut(f64)>,
+) -> Result<DrumOutcome, DrumError> {
+    options.validate(column).map_err(DrumError::Option)?;
+    let n = column.n_interfaces();
+    let mut st = Stepper::new(column, options.mu(n), options.scheme);
+    if let Some(a) = &options.initial_angles {
+        let mut phi = vec![0.0; 2 * n];
+        for (k, &x) in a.iter().enumerate() {
+            if x < 0.0 {
+                phi[k] = x;
+            } else if x > 0.0 {
+                phi[n + k] = x;
+            }
+        }
+        let mut q = vec![0.0; 3 * n];
+        let mut v = vec![0.0; 3 * n];
+        st.drums()
+            .from_interface_state(column, &phi, &vec![0.0; 2 * n], &mut q, &mut v);
+        st.set_state(0.0, &q, &v);
+    }
+    let potential0 = st.potential_energy();
+    let kinetic0 = st.kinetic_energy();
+    let mut mode = vec![JointMode::Closed; n];
+    let mut slipping = vec![false; n];
+    modes(&st, &mut mode, &mut slipping);
+    let mut next_mode = mode.clone();
+    let mut next_slipping = slipping.clone();
+    let mut out = DrumOutcome {
+        stop: DrumStop::Duration,
+        t_end: 0.0,
+        overturned: false,
+        peak_rotation: vec![0.0; n],
+        peak_slip: vec![0.0; n],
+        residual_slip: vec![0.0; n],
+        peak_top_displacement: 0.0,
+        energy: DrumEnergy::default(),
+        event_counts: [0; 7],
+        events: Vec::new(),
+        history: options.record.history_every.map(|_| DrumHistory {
+            n,
+            ..DrumHistory::default()
+        }),
+        modes_end: Vec::new(),
+        counters: StepCounters::default(),
+    };
+    let record_state = |st: &Stepper, h: &mut DrumHistory| {
+        h.t.push(st.t);
+        h.q.extend_from_slice(&st.q);
+        h.slip.extend(st.geometry.iter().map(|g| g.slip));
+    };
+    if let Some(h) = &mut out.history {
+        record_state(&st, h);
+    }
+    let push = |out: &mut DrumOutcome, t: f64, kind: DrumEventKind, joint: usize| {
+        let i = KINDS.iter().position(|&k| k == kind).unwrap_or(0);
+        out.event_counts[i] += 1;
+        if options.record.events {
+            out.events.push(DrumEvent { t, kind, joint });
+        }
+    };
+    let n_steps = (options.duration / options.dt).round().max(0.0) as u64;
+    let mut next_progress = 0.01;
+    let mut stop: Option<DrumStop> = None;
+    for i in 0..n_steps {
+        // The last step lands exactly on the duration.
+        let t_target = if i + 1 == n_steps {
+            options.duration
+        } else {
+            (i + 1) as f64 * options.dt
+        };
+        let h = t_target - st.t;
+        match st.step(h, motion) {
+            Ok(()) => {}
+            Err(StepError::SlidOff(k)) => {
+                stop = Some(DrumStop::SlidOff { joint: k });
+            }
+            Err(StepError::Contact) => return Err(DrumError::Contact { t: st.t }),
+        }
+        for imp in &st.impacts {
+            push(&mut out, imp.t, DrumEventKind::Impact, imp.joint);
+        }
+        modes(&st, &mut next_mode, &mut next_slipping);
+        for k in 0..n {
+            let (a, b) = (mode[k], next_mode[k]);
+            if a != b {
+                use JointMode::*;
+                let kind = match (a, b) {
+                    (Closed, RockingLeft | RockingRight) => Some(DrumEventKind::Opening),
+                    (Flying, _) => Some(DrumEventKind::Landing),
+                    (_, Flying) => Some(DrumEventKind::LiftOff),
+                    // A located impact was pushed already.
+                    (RockingLeft | RockingRight, _) => {
+                        if st.impacts.iter().any(|m| m.joint == k) {
+                            None
+                        } else {
+                            Some(DrumEventKind::Impact)
+                        }
+                    }
+                    _ => None,
+                };
+                if let Some(kind) = kind {
+                    push(&mut out, st.t, kind, k);
+                    if kind == DrumEventKind::LiftOff && options.on_tension == OnTension::Stop {
+                        stop = stop.or(Some(DrumStop::Tension { joint: k }));
+                    }
+                }
+            }
+            if slipping[k] != next_slipping[k] {
+                let kind = if next_slipping[k] {
+                    DrumEventKind::SlipStart
+                } else {
+                    DrumEventKind::SlipStop
+                };
+                push(&mut out, st.t, kind, k);
+                if next_slipping[k] && options.on_sliding == OnSliding::Stop {
+                    stop = stop.or(Some(DrumStop::Sliding { joint: k }));
+                }
+            }
+        }
+        std::mem::swap(&mut mode, &mut next_mode);
+        std::mem::swap(&mut slipping, &mut next_slipping);
+        // Peaks.
+        for j in 0..n {
+            out.peak_rotation[j] = out.peak_rotation[j].max(st.q[3 * j + 2].abs());
+        }
+        for (k, g) in st.geometry.iter().enumerate() {
+            out.peak_slip[k] = out.peak_slip[k].max(g.slip.abs());
+        }
+        out.peak_top_displacement = out.peak_top_displacement.max(st.q[3 * (n - 1)].abs());
+        // Overturning: static tipping of the part above a rocking joint, or a fallen drum.
+        if stop.is_none() {
+            if options.continue_until_fallen {
+                if let Some(j) =
+                    (0..n).find(|&j| st.q[3 * j + 2].abs() >= 0.5 * std::f64::consts::PI)
+                {
+                    stop = Some(DrumStop::Fallen { drum: j });
+                }
+            } else if let Some(k) = tipped(&st, &mode) {
+                push(&mut out, st.t, DrumEventKind::Overturned, k);
+                stop = Some(DrumStop::Overturned { joint: k });
+            }
+        }
+        if let Some(h) = &mut out.history {
+            let every = options.record.history_every.unwrap_or(1) as u64;
+            if (i + 1) % every == 0 || i + 1 == n_steps || stop.is_some() {
+                record_state(&st, h);
+            }
+        }
+        if stop.is_some() {
+            break;
+        }
+        if let Some(p) = progress.as_deref_mut() {
+            let f = (i + 1) as f64 / n_steps as f64;
+            if f >= next_progress {
+                p(f);
+                next_progress = f + 0.01;
+            }
+        }
+    }
+    out.stop = stop.unwrap_or(DrumStop::Duration);
+    out.overturned = matches!(
+        out.stop,
+        DrumStop::Overturned { .. } | DrumStop::Fallen { .. } | DrumStop::SlidOff { .. }
+    );
+    out.t_end = st.t;
+    for (k, g) in st.geometry.iter().enumerate() {
+        out.residual_slip[k] = g.slip;
+    }
+    out.energy = DrumEnergy {
+        potential_change: st.potential_energy() - potential0,
+        kinetic_change: st.kinetic_energy() - kinetic0,
+        accounts: st.energy,
+    };
+    out.modes_end = mode;
+    out.counters = st.counters;
+    Ok(out)
+}
+
+/// The lowest rocking joint whose part above has its centre of mass beyond the pivot, along the
+/// lower face (as the thesis's driver measures static tipping).
+fn tipped(st: &Stepper, mode: &[JointMode]) -> Option<usize> {
+    let n = mode.len();
+    let d = st.drums();
+    // Suffix sums of m and m c.
+    let (mut m, mut sx, mut sy) = (0.0, 0.0, 0.0);
+    let mut found = None;
+    for k in (0..n).rev() {
+        m += d.mass(k);
+        sx += d.mass(k) * st.q[3 * k];
+        sy += d.mass(k) * st.q[3 * k + 1];
+        let end = match mode[k] {
+            JointMode::RockingRight => 0,
+            JointMode::RockingLeft => 1,
+            _ => continue,
+        };
+        let e = &st.geometry[k].ends[end];
+        let t = [e.normal[1], -e.normal[0]];
+        let along = (sx / m - e.point[0]) * t[0] + (sy / m - e.point[1]) * t[1];
+        let outward = if end == 0 { along > 0.0 } else { along < 0.0 };
+        if outward {
+            found = Some(k);
+        }
+    }
+    found
+}

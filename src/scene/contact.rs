@@ -1,0 +1,261 @@
+//! The scene fields of the contact scheme (`src/contact/`, docs/multidrum.md): `friction` per
+//! joint, `on_sliding`, `on_tension` and `scheme`, and the [`DrumOptions`] they give.
+//!
+//! ```json
+//! "friction": 0.7,            (or one μ per joint: [0.7, 0.6, 0.6])
+//! "on_sliding": "slide",      ("stop", the default: the thesis's driver stops at the first slip)
+//! "on_tension": "fly",        ("stop", the default: it stops at the first tensile joint)
+//! "scheme": "moreau"          ("event_driven" or "moreau"; default: "moreau" when a joint may
+//!                              slide or fly, "event_driven" otherwise)
+//! ```
+//! With the defaults a scene runs on the event-driven driver exactly as before these fields.
+
+use serde::Deserialize;
+
+use super::{err, SceneError, SceneSpec};
+use crate::contact::moreau::SchemeOptions;
+use crate::contact::simulation::{DrumOptions, DrumRecording, OnSliding, OnTension};
+use crate::model::column::{Column, GRAVITY};
+
+/// Friction coefficient μ: one for every joint, or one per joint (bottom to top).
+#[derive(Clone, Debug, Deserialize)]
+#[serde(
+    untagged,
+    expecting = "friction: a number, or a list of one number per joint"
+)]
+pub enum FrictionSpec {
+    /// The same μ at every joint.
+    All(f64),
+    /// One μ per joint.
+    PerJoint(Vec<f64>),
+}
+
+/// The time stepping a scene asks for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SchemeChoice {
+    /// The thesis's event-driven driver (`src/driver/`).
+    EventDriven,
+    /// Moreau–Jean time stepping with Coulomb friction and flight (`src/contact/`).
+    Moreau,
+}
+
+fn choice(field: &str, value: Option<&str>, allowed: [&str; 2]) -> Result<bool, SceneError> {
+    match value {
+        None => Ok(false),
+        Some(v) if v == allowed[0] => Ok(false),
+        Some(v) if v == allowed[1] => Ok(true),
+        Some(other) => Err(err(
+            field,
+            format!("unknown value {other:?} ({}, {})", allowed[0], allowed[1]),
+        )),
+    }
+}
+
+/// The scheme a scene asks for, checked against its other fields.
+pub(super) fn scheme(spec: &SceneSpec) -> Result<SchemeChoice, SceneError> {
+    let slide = choice("on_sliding", spec.on_sliding.as_deref(), ["stop", "slide"])?;
+    let fly = choice("on_tension", spec.on_tension.as_deref(), ["stop", "fly"])?;
+    let moreau = match spec.scheme.as_deref() {
+        None => slide || fly,
+        Some("event_driven") => {
+            if slide {
+                return Err(err(
+                    "on_sliding",
+                    "\"slide\" needs scheme \"moreau\" (the event-driven driver stops at a slip)",
+                ));
+            }
+            if fly {
+                return Err(err(
+                    "on_tension",
+                    "\"fly\" needs scheme \"moreau\" (the event-driven driver stops at tension)",
+                ));
+            }
+            false
+        }
+        Some("moreau") => true,
+        Some(other) => {
+            return Err(err(
+                "scheme",
+                format!("unknown scheme {other:?} (event_driven, moreau)"),
+            ))
+        }
+    };
+    if !moreau {
+        if let Some(FrictionSpec::PerJoint(_)) = spec.friction {
+            return Err(err(
+                "friction",
+                "one value per joint needs scheme \"moreau\" (the event-driven driver takes one μ)",
+            ));
+        }
+        return Ok(SchemeChoice::EventDriven);
+    }
+    // The event-driven driver's own settings mean nothing to the time stepping: refuse them
+    // rather than ignore them.
+    let driver_only = [
+        ("integrator", spec.integrator.is_some()),
+        ("locator", spec.locator.is_some()),
+        ("solver", spec.solver.is_some()),
+        ("exact_velocity_terms", spec.exact_velocity_terms),
+    ];
+    if let Some((field, _)) = driver_only.iter().find(|(_, set)| *set) {
+        return Err(err(
+            field,
+            "applies to scheme \"event_driven\" only (the Moreau–Jean scheme integrates exact \
+             rigid-body dynamics with its own contact solver)",
+        ));
+    }
+    Ok(SchemeChoice::Moreau)
+}
+
+/// The scalar μ the event-driven driver takes (default 0.7).
+pub(super) fn driver_friction(spec: &SceneSpec, default: f64) -> f64 {
+    match &spec.friction {
+        Some(FrictionSpec::All(mu)) => *mu,
+        // Only with the Moreau scheme (checked in `scheme`); the driver's options are unused.
+        Some(FrictionSpec::PerJoint(mu)) => mu.iter().copied().fold(f64::INFINITY, f64::min),
+        None => default,
+    }
+}
+
+/// The options of the contact scheme for a scene that chose it.
+pub(super) fn drum_options(spec: &SceneSpec, column: &Column) -> Result<DrumOptions, SceneError> {
+    let (friction, joint_friction) = match &spec.friction {
+        None => (DrumOptions::default().friction, None),
+        Some(FrictionSpec::All(mu)) => (*mu, None),
+        Some(FrictionSpec::PerJoint(mu)) => (DrumOptions::default().friction, Some(mu.clone())),
+    };
+    let options = DrumOptions {
+        dt: spec.dt,
+        duration: spec.duration,
+        friction,
+        joint_friction,
+        on_sliding: if spec.on_sliding.as_deref() == Some("slide") {
+            OnSliding::Slide
+        } else {
+            OnSliding::Stop
+        },
+        on_tension: if spec.on_tension.as_deref() == Some("fly") {
+            OnTension::Fly
+        } else {
+            OnTension::Stop
+        },
+        scheme: SchemeOptions {
+            n_impacts: spec.impacts,
+            gravity: spec.gravity.unwrap_or(GRAVITY),
+            ..SchemeOptions::default()
+        },
+        continue_until_fallen: spec.continue_until_fallen,
+        record: DrumRecording {
+            history_every: spec.output.history.then_some(spec.output.every),
+            events: true,
+        },
+        initial_angles: spec.initial_angles.clone(),
+    };
+    options.validate(column).map_err(|e| {
+        // The options' names as the scene spells them.
+        let field = match e.field {
+            "joint_friction" => "friction",
+            "scheme.n_impacts" => "impacts",
+            "scheme.gravity" => "gravity",
+            "record.history_every" => "output.every",
+            f => f,
+        };
+        err(field, format!("{}: {}", e.value, e.rule))
+    })?;
+    Ok(options)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::{build, Scene, SceneError, SceneSpec};
+    use super::*;
+    use std::path::Path;
+
+    fn parse(extra: &str) -> Result<Scene, SceneError> {
+        let text = format!(
+            r#"{{"blocks": [{{"width": 1, "height": 1, "mass": 2500}},
+                {{"width": 1, "height": 1, "mass": 2500}}],
+            "excitation": {{"type": "half_sine", "amplitude": 5.0, "duration": 0.3}},
+            "duration": 1.0, "dt": 0.001{extra}}}"#
+        );
+        let spec: SceneSpec = serde_json::from_str(&text).map_err(|e| SceneError(e.to_string()))?;
+        build(spec, Path::new("."), "test")
+    }
+
+    #[test]
+    fn the_defaults_keep_the_event_driven_driver() {
+        let s = parse("").unwrap();
+        assert!(s.contact.is_none());
+        assert_eq!(s.options.physics.friction, 0.7);
+        let s = parse(r#", "friction": 0.5, "on_sliding": "stop", "on_tension": "stop""#).unwrap();
+        assert!(s.contact.is_none());
+        assert_eq!(s.options.physics.friction, 0.5);
+    }
+
+    #[test]
+    fn sliding_or_flight_chooses_the_contact_scheme() {
+        let s = parse(r#", "on_sliding": "slide", "impacts": 2"#).unwrap();
+        let c = s.contact.unwrap();
+        assert_eq!(c.on_sliding, OnSliding::Slide);
+        assert_eq!(c.on_tension, OnTension::Stop);
+        assert_eq!(c.scheme.n_impacts, 2);
+        assert_eq!(c.friction, 0.7);
+        let s = parse(r#", "on_tension": "fly", "friction": [0.5, 0.6]"#).unwrap();
+        let c = s.contact.unwrap();
+        assert_eq!(
+            (c.on_sliding, c.on_tension),
+            (OnSliding::Stop, OnTension::Fly)
+        );
+        assert_eq!(c.joint_friction, Some(vec![0.5, 0.6]));
+        let s = parse(r#", "scheme": "moreau", "friction": 0.4"#).unwrap();
+        let c = s.contact.unwrap();
+        assert_eq!(
+            (c.on_sliding, c.on_tension),
+            (OnSliding::Stop, OnTension::Stop)
+        );
+        assert_eq!(c.friction, 0.4);
+    }
+
+    #[test]
+    fn errors_name_the_field() {
+        for (extra, field) in [
+            (r#", "on_sliding": "glide""#, "on_sliding"),
+            (r#", "on_tension": "jump""#, "on_tension"),
+            (r#", "scheme": "euler""#, "scheme"),
+            (
+                r#", "scheme": "event_driven", "on_sliding": "slide""#,
+                "on_sliding",
+            ),
+            (
+                r#", "scheme": "event_driven", "on_tension": "fly""#,
+                "on_tension",
+            ),
+            (r#", "friction": [0.5, 0.6]"#, "friction"),
+            (r#", "on_sliding": "slide", "friction": [0.5]"#, "friction"),
+            (
+                r#", "on_sliding": "slide", "friction": [0.5, -1]"#,
+                "friction",
+            ),
+            (r#", "on_sliding": "slide", "friction": -1"#, "friction"),
+            (
+                r#", "on_sliding": "slide", "integrator": "rk4""#,
+                "integrator",
+            ),
+            (
+                r#", "on_sliding": "slide", "locator": "hermite""#,
+                "locator",
+            ),
+            (r#", "on_sliding": "slide", "impacts": 0"#, "impacts"),
+            (
+                r#", "on_sliding": "slide", "initial_angles": [0.1]"#,
+                "initial_angles",
+            ),
+            (r#", "friction": "much""#, "friction"),
+        ] {
+            let e = parse(extra)
+                .err()
+                .unwrap_or_else(|| panic!("accepted: {extra}"));
+            assert!(e.0.contains(field), "{extra}: {}", e.0);
+        }
+    }
+}
