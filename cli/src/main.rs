@@ -14,7 +14,7 @@ mod output;
 mod plot;
 mod progress;
 
-use commands::{design, oas, oc, simulate, t1, thesis};
+use commands::{design, oas, oc, simulate, t1, thesis, tp};
 
 /// The impact and opening models allocate a few small vectors per event, and sweeps of
 /// event-heavy records spent a quarter of their time in glibc's allocator; with mimalloc the OAS
@@ -53,6 +53,9 @@ enum Command {
         override_usage = "rocking t1 [OPTIONS] RECORD...\n       rocking t1 --merge SHARD.json... [--json]"
     )]
     T1(t1::T1Args),
+    /// Replacement sine duration t_p of records (Eq. 25, Fig. 52): a_max, the largest
+    /// single-lobe impulse I_max, t_p = I_max / (F a_max), F = 2/pi. No simulation.
+    Tp(tp::TpArgs),
     /// Pier width (Eq. 23, 24) and the Eq. 31 check.
     #[command(subcommand)]
     Design(design::Design),
@@ -69,6 +72,7 @@ fn main() -> ExitCode {
         Command::Oc(a) => oc::run(a),
         Command::Oas(a) => oas::run(a),
         Command::T1(a) => t1::run(a),
+        Command::Tp(a) => tp::run(a),
         Command::Design(d) => d.run(),
         Command::Bench(b) => b.run(),
     };

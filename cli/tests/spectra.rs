@@ -82,6 +82,26 @@ fn spectra_bench_compares_with_full_runs() {
     assert!(text.contains("Speed-up of the energy-bound stop"));
 }
 
+/// `rocking bench spectra --dt-factor 2` on the bundled record: t₁ at both steps and the cost
+/// ratio; t₁ at the default step is the one `rocking t1` prints (golden: 0.2278 s).
+#[test]
+fn spectra_bench_prices_a_scaled_step() {
+    let (ok, stdout, err) = rocking(&["bench", "spectra", "--dt-factor", "2"]);
+    assert!(ok, "{err}");
+    assert!(stdout.contains("Time step rule x 2:"), "{stdout}");
+    let row = stdout
+        .lines()
+        .filter(|l| l.starts_with("| synthetic (bundled)"))
+        .nth(1)
+        .expect("a row of the scaled step");
+    let cells: Vec<&str> = row.split('|').map(str::trim).collect();
+    assert_eq!(cells[2], "0.2278", "{row}");
+    let t1: f64 = cells[3].parse().unwrap();
+    assert!(t1 > 0.05 && t1 < 2.0, "{row}");
+    let ratio: f64 = cells[7].parse().unwrap();
+    assert!(ratio > 0.0, "{row}");
+}
+
 /// An output without its wall-time lines (`"seconds": …`), which differ from run to run.
 fn without_seconds(json: &str) -> String {
     json.lines()

@@ -10,6 +10,12 @@ left corner (``>= 0``, status +1); status 0 is closed (SPEC §1).
 - :func:`column_mass_matrix` (``M`` and ``q`` of a column of rectangular blocks),
   :func:`reduce` (``BᵀMB``, ``Bᵀp`` of an FE model, thesis Appendix C);
 - :func:`read_record`, :class:`Record` and the pulses (:func:`half_sine`, :func:`full_sine`, …);
+- :func:`simulate`: a scene (the CLI's schema) through the reference driver (thesis 3.3), with
+  the history as arrays, the events and the summary of ``rocking simulate``;
+- :func:`oas`, :func:`t1`, :func:`oc`: overturning spectra (thesis Chapter 5), parallel,
+  interruptible with Ctrl-C; :func:`design_width`, :func:`design_check`: the design method
+  (Eq. 31);
+- :mod:`rocking.plot`: matplotlib plots of the results (needs ``matplotlib``);
 - :class:`RockingError`, the one exception (a ``ValueError`` with the C ABI's status code);
 - :mod:`rocking.opensees`: the coupling with an openseespy model (needs ``openseespy``).
 
@@ -39,19 +45,17 @@ from ._rocking import (
     triangular,
 )
 
+from . import plot
+from ._design import design_check, design_width
+from ._errors import error as _error
+from ._simulate import Simulation, simulate
+from ._spectra import Oas, Oc, oas, oc, t1
+
 # Defaults, so that a RockingError raised from Python code has every attribute too.
 RockingError.code = None
 RockingError.name = None
 RockingError.message = None
 RockingError.detail = ""
-
-
-def _error(detail):
-    """A RockingError raised by the package's Python code (scenes, the OpenSees coupling): no C
-    code, ``detail`` names the field."""
-    e = RockingError(detail)
-    e.detail = detail
-    return e
 
 
 #: ``{C name: status code}`` of the C ABI (``ROCKING_OK`` = 0, ``ROCKING_ERR_*``): the values of
@@ -64,22 +68,32 @@ GRAVITY = 9.81
 __all__ = [
     "ERROR_CODES",
     "GRAVITY",
+    "Oas",
+    "Oc",
     "Pulse",
     "Record",
     "Report",
     "RockingError",
+    "Simulation",
     "__version__",
     "check_configuration",
     "column_mass_matrix",
+    "design_check",
+    "design_width",
     "full_sine",
     "half_sine",
     "half_sines",
     "impact_model",
     "mavroeidis_papageorgiou",
+    "oas",
+    "oc",
     "opening_model",
+    "plot",
     "read_record",
     "rectangular",
     "reduce",
     "ricker",
+    "simulate",
+    "t1",
     "triangular",
 ]

@@ -150,3 +150,24 @@ def _time_impact_model(
     repeats: int = 100000,
 ) -> float:
     """Benchmark hook: mean seconds per call of the library's impact model alone."""
+
+# ---- the driver, the spectra and the design method (wrapped by rocking/_simulate.py,
+# _spectra.py, _design.py; use rocking.simulate, rocking.oas, ... rather than these) ----
+
+def _simulate(
+    path: Optional[str] = None,
+    text: Optional[str] = None,
+    base: Optional[str] = None,
+    name: Optional[str] = None,
+    record: Optional[Record] = None,
+) -> Dict[str, Any]: ...
+def _oas(record: Union[Record, str, "PathLike[str]"], *args: Any) -> Tuple[Dict[str, Any], float]: ...
+def _t1(records: List[Union[Record, str]], *args: Any) -> List[Dict[str, Any]]: ...
+def _oc(shape: str, *args: Any) -> Dict[str, Any]: ...
+def _simplified_oas(
+    p: ArrayLike, t1: float, i_cr: float, t1_prime: Optional[float] = None, beta: Optional[float] = None
+) -> Tuple[Float64Array, Optional[Float64Array]]: ...
+def _design_width(height: List[float], pga: List[float], t1: List[float], mass: str, g: float) -> Dict[str, Any]: ...
+def _design_check(
+    width: List[float], height: List[float], pga: List[float], t1: List[float], mass: str, g: float, exact_icr: bool
+) -> Dict[str, Any]: ...

@@ -8,11 +8,23 @@
 
 mod arrays;
 mod column;
+mod design;
 mod errors;
 mod ground;
+mod json;
 mod models;
+mod simulate;
+mod spectra;
+mod sweep;
 
 use pyo3::prelude::*;
+
+/// The allocator of the `rocking` CLI (cli/src/main.rs): the models allocate a few small vectors
+/// per event, and a sweep spends much of its time in glibc's allocator. It serves only this
+/// extension's Rust allocations (numpy arrays made from Rust vectors are freed by Rust too);
+/// Python's own memory is untouched.
+#[global_allocator]
+static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
 
 #[pymodule]
 fn _rocking(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -37,5 +49,14 @@ fn _rocking(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(ground::triangular, m)?)?;
     m.add_function(wrap_pyfunction!(ground::ricker, m)?)?;
     m.add_function(wrap_pyfunction!(ground::mavroeidis_papageorgiou, m)?)?;
+    // The driver, the spectra and the design method: wrapped by the Python side
+    // (rocking/_simulate.py, _spectra.py, _design.py), which adds the result classes and plots.
+    m.add_function(wrap_pyfunction!(simulate::_simulate, m)?)?;
+    m.add_function(wrap_pyfunction!(spectra::_oas, m)?)?;
+    m.add_function(wrap_pyfunction!(spectra::_t1, m)?)?;
+    m.add_function(wrap_pyfunction!(spectra::_oc, m)?)?;
+    m.add_function(wrap_pyfunction!(spectra::_simplified_oas, m)?)?;
+    m.add_function(wrap_pyfunction!(design::_design_width, m)?)?;
+    m.add_function(wrap_pyfunction!(design::_design_check, m)?)?;
     Ok(())
 }

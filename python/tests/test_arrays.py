@@ -97,3 +97,38 @@ def test_report(case):
     assert "Report(solver=" in repr(r)
     with pytest.raises(AttributeError):
         r.changed = False  # frozen
+
+
+def frozen(a, dtype=np.float64):
+    a = np.array(a, dtype=dtype)
+    a.flags.writeable = False
+    return a
+
+
+def test_simulate_spectra_and_design_leave_their_arguments_alone(root):
+    """Read-only arrays are accepted (nothing tries to write them), writable ones and the scene
+    dict come back unchanged, and the results are new arrays."""
+    import copy
+    import json
+
+    scene = json.loads((root / "examples/scenes/two_block_free_rocking.json").read_text())
+    scene["initial_angles"] = frozen(scene["initial_angles"])
+    before = copy.deepcopy(scene)
+    r = rocking.simulate(scene)
+    assert scene.keys() == before.keys() and all(
+        np.array_equal(scene[k], before[k]) if isinstance(scene[k], np.ndarray) else scene[k] == before[k]
+        for k in scene)
+    assert r.block_rotations.flags.writeable and not np.shares_memory(r.dof_angles, scene["initial_angles"])
+
+    levels, sizes = frozen([2.0, 4.0]), frozen([10.0, 1.0, 0.3])
+    o = rocking.oas(root / "examples/records/synthetic.AT2", levels=levels, sizes=sizes)
+    np.testing.assert_array_equal(levels, [2.0, 4.0])
+    assert not np.shares_memory(o.levels, levels) and not np.shares_memory(o.sizes, sizes)
+
+    heights = np.array([10.0, 20.0])
+    pga = frozen([3.0, 3.0])
+    w = rocking.design_width(heights, pga, 0.25)
+    np.testing.assert_array_equal(heights, [10.0, 20.0])
+    assert not np.shares_memory(w["height"], heights)
+    w["height"][0] = -1.0  # the result is the caller's to write
+    assert heights[0] == 10.0

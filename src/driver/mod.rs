@@ -57,6 +57,7 @@
 //! traits of `chain.rs`; neither touches the integrators.
 
 mod chain;
+pub mod closed;
 mod dop853;
 mod dynamics;
 mod events;
@@ -72,6 +73,7 @@ mod step;
 #[cfg(test)]
 mod tests;
 
+pub use closed::{simulate_loop, LoopOptions, LoopOutcome, LoopState};
 pub(crate) use options::RunOptions;
 pub use options::{
     EventLocator, InitialState, Integrator, PhysicsOptions, Recording, Scheme, SimulationOptions,
@@ -111,11 +113,21 @@ pub(crate) fn overturns_with(
     motion: &dyn GroundMotion,
     options: RunOptions,
 ) -> Result<bool, DriverError> {
+    Ok(outcome_with(column, motion, options)?.overturned)
+}
+
+/// The [`Outcome`] of the lean path of [`overturns_with`] (nothing recorded, the stop, its time
+/// and the count of impacts kept): how a sweep's point ended.
+pub(crate) fn outcome_with(
+    column: &Column,
+    motion: &dyn GroundMotion,
+    options: RunOptions,
+) -> Result<Outcome, DriverError> {
     let options = RunOptions {
         recording: Recording::NONE,
         ..options
     };
-    Ok(simulate_with(column, motion, options, None)?.overturned)
+    simulate_with(column, motion, options, None)
 }
 
 fn simulate_with(

@@ -26,11 +26,16 @@
 //! Files: `time_step.rs` the rule for `dt`; `sweep.rs` the options every sweep shares and the
 //! columns of a size grid; `overturning_curve.rs` the OC of pulses; `oas.rs` the OAS of a record;
 //! `transformed.rs` its transformed form, `f_min`, `t_1`, the inclined fit and the conservative
-//! checks; `replacement_sine.rs` the replacement sine duration `t_p` of a record (Eq. 25).
+//! checks; `replacement_sine.rs` the replacement sine duration `t_p` of a record (Eq. 25);
+//! `statistics.rs` the fractile and the correlation of a record suite.
 
 mod oas;
 mod overturning_curve;
+mod point;
 mod replacement_sine;
+#[cfg(feature = "serde")]
+pub mod report;
+pub mod statistics;
 mod sweep;
 mod time_step;
 mod transformed;
@@ -40,6 +45,7 @@ pub use oas::{
     SizeSearch,
 };
 pub use overturning_curve::{overturning_curve, pulse_overturns, Oc, PulseShape};
+pub use point::{point_run, PointRun};
 pub use replacement_sine::{replacement_sine, ReplacementSine, SINE_FULLNESS};
 pub use sweep::{column_of_size, Progress, SweepOptions};
 pub use time_step::TimeStep;

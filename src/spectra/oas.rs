@@ -3,7 +3,7 @@
 
 use super::sweep::map_indexed;
 use super::{at_least_one_block, column_of_size, invalid, Progress, SpectraError, SweepOptions};
-use crate::driver::overturns_with;
+use crate::driver::{overturns_with, RunOptions};
 use crate::ground::records::Record;
 use crate::ground::GroundMotion;
 use crate::model::single_block::{self, EquivalentBlock};
@@ -80,7 +80,7 @@ impl Default for OasOptions {
 }
 
 impl OasOptions {
-    fn validate(&self) -> Result<(), SpectraError> {
+    pub(super) fn validate(&self) -> Result<(), SpectraError> {
         self.sweep.validate()?;
         positive("slenderness", self.slenderness)?;
         all_positive("levels", &self.levels)?;
@@ -111,14 +111,26 @@ pub fn record_overturns(
 
 /// A record with what every simulation of a sweep over it reads: its PGA and its tail
 /// impulses ([`Record::impulse_table`]), computed once.
-struct PreparedRecord<'a> {
+pub(super) struct PreparedRecord<'a> {
     record: &'a Record,
     pga: f64,
     impulses: Vec<f64>,
 }
 
+/// One point of a sweep over a record, ready to run: the column, the scaled record started at
+/// `t0` and the run's options.
+pub(super) struct PointSetup<'a> {
+    pub column: crate::model::column::Column,
+    pub motion: ScaledRecord<'a>,
+    pub run: RunOptions<'a>,
+    /// Record time at which the simulation starts (the sample before the first exceedance).
+    pub t0: f64,
+    /// Record time of the sample after the last exceedance of the uplift acceleration.
+    pub t_last: f64,
+}
+
 impl<'a> PreparedRecord<'a> {
-    fn new(record: &'a Record) -> Result<PreparedRecord<'a>, SpectraError> {
+    pub(super) fn new(record: &'a Record) -> Result<PreparedRecord<'a>, SpectraError> {
         let pga = record.pga();
         if pga.is_nan() || pga <= 0.0 {
             return Err(invalid("record", format!("`{}` has zero PGA", record.name)));
@@ -130,8 +142,15 @@ impl<'a> PreparedRecord<'a> {
         })
     }
 
-    /// [`record_overturns`].
-    fn overturns(&self, level: f64, size: f64, options: &OasOptions) -> Result<bool, SpectraError> {
+    /// The run of the column of size `size` under the record scaled to `level · a_p,min`;
+    /// `None` when the scaled record never reaches the uplift acceleration (the column never
+    /// moves).
+    pub(super) fn setup<'o>(
+        &'o self,
+        level: f64,
+        size: f64,
+        options: &'o OasOptions,
+    ) -> Result<Option<PointSetup<'o>>, SpectraError> {
         let record = self.record;
         let column = column_of_size(size, options.slenderness, options.n_blocks)?;
         let g = options.sweep.simulation.physics.gravity;
@@ -141,7 +160,7 @@ impl<'a> PreparedRecord<'a> {
         let Some((t0, t_last)) =
             exceedance_window(record, factor, column.static_uplift_acceleration(g))
         else {
-            return Ok(false);
+            return Ok(None);
         };
         let motion = ScaledRecord {
             record,
@@ -156,11 +175,30 @@ impl<'a> PreparedRecord<'a> {
             motion.end_time()
         };
         let tail = options.sweep.tail / p;
-        let mut sim = options.sweep.simulation(dt, end + tail);
+        let mut run = options.sweep.simulation(dt, end + tail);
         // After the last exceedance a closed column can never lift off again: stop there
         // (exact).
-        sim.stopping.quiet_after = Some(t_last - t0);
-        Ok(overturns_with(&column, &motion, sim)?)
+        run.stopping.quiet_after = Some(t_last - t0);
+        Ok(Some(PointSetup {
+            column,
+            motion,
+            run,
+            t0,
+            t_last,
+        }))
+    }
+
+    /// [`record_overturns`].
+    pub(super) fn overturns(
+        &self,
+        level: f64,
+        size: f64,
+        options: &OasOptions,
+    ) -> Result<bool, SpectraError> {
+        Ok(match self.setup(level, size, options)? {
+            None => false,
+            Some(s) => overturns_with(&s.column, &s.motion, s.run)?,
+        })
     }
 }
 
@@ -249,7 +287,7 @@ impl Oas {
 
 /// A record scaled by `factor` and started at `t0` (the time before which the column cannot
 /// have moved).
-struct ScaledRecord<'a> {
+pub(super) struct ScaledRecord<'a> {
     record: &'a Record,
     factor: f64,
     t0: f64,

@@ -31,6 +31,10 @@ pub struct SpectraBenchArgs {
     /// Threads (default: every core).
     #[arg(long, value_parser = crate::commands::sweep::count)]
     pub threads: Option<usize>,
+    /// Run each record again with the time step rule scaled by this factor (e.g. 0.5): the
+    /// cost of a finer default step, and t₁ at both steps (convergence).
+    #[arg(long = "dt-factor", value_parser = crate::commands::sweep::positive)]
+    pub dt_factor: Option<f64>,
 }
 
 /// One record's figures.
@@ -42,6 +46,10 @@ struct Row {
     seconds: f64,
     /// `(seconds, identical)` with full runs.
     full: Option<(f64, bool)>,
+    /// t₁ at the default step.
+    t1: Option<f64>,
+    /// `(seconds, t₁)` with the step scaled by `--dt-factor`.
+    scaled: Option<(f64, Option<f64>)>,
 }
 
 fn bundled() -> Result<Record, String> {
@@ -76,6 +84,10 @@ pub fn run(args: &SpectraBenchArgs) -> Result<(), String> {
     let options = OasOptions::default();
     let mut full_options = options.clone();
     full_options.sweep.simulation.stopping.stop_when_safe = false;
+    let mut scaled_options = options.clone();
+    if let Some(f) = args.dt_factor {
+        scaled_options.sweep.time_step = options.sweep.time_step.scaled(f);
+    }
     let bar = progress::bar(records.len() as u64, "OAS");
     let mut rows = Vec::new();
     for record in &records {
@@ -87,6 +99,13 @@ pub fn run(args: &SpectraBenchArgs) -> Result<(), String> {
         } else {
             None
         };
+        let scaled = match args.dt_factor {
+            Some(_) => {
+                let (o, s) = timed_oas(record, &scaled_options)?;
+                Some((s, o.t1()))
+            }
+            None => None,
+        };
         rows.push(Row {
             name: record.name.clone(),
             duration: record.duration(),
@@ -94,11 +113,16 @@ pub fn run(args: &SpectraBenchArgs) -> Result<(), String> {
             simulations: oas.simulations(),
             seconds,
             full,
+            t1: oas.t1(),
+            scaled,
         });
         bar.inc(1);
     }
     bar.finish_and_clear();
-    let text = report(&rows, rayon::current_num_threads());
+    let mut text = report(&rows, rayon::current_num_threads());
+    if let Some(f) = args.dt_factor {
+        text.push_str(&scaled_report(&rows, f));
+    }
     print!("{text}");
     if let Some(out) = &args.out {
         write_atomic(out, text.as_bytes())?;
@@ -107,6 +131,33 @@ pub fn run(args: &SpectraBenchArgs) -> Result<(), String> {
         return Err("the energy-bound stop changed an OAS (see the table)".into());
     }
     Ok(())
+}
+
+/// The cost and the t₁ of the step scaled by `factor`, against the default's.
+fn scaled_report(rows: &[Row], factor: f64) -> String {
+    let f = |v: Option<f64>| v.map_or("-".to_string(), |x| format!("{x:.4}"));
+    let mut s = format!(
+        "\nTime step rule x {factor}:\n\n| record | t1 (s) | t1 at dt x {factor} (s) | change | wall (s) | wall at dt x {factor} (s) | cost ratio |\n|---|---:|---:|---:|---:|---:|---:|\n"
+    );
+    for r in rows {
+        let Some((seconds, t1)) = r.scaled else {
+            continue;
+        };
+        let change = match (r.t1, t1) {
+            (Some(a), Some(b)) => format!("{:+.1} %", (b / a - 1.0) * 100.0),
+            _ => "-".into(),
+        };
+        let _ = writeln!(
+            s,
+            "| {} | {} | {} | {change} | {:.2} | {seconds:.2} | {:.2} |",
+            r.name,
+            f(r.t1),
+            f(t1),
+            r.seconds,
+            seconds / r.seconds
+        );
+    }
+    s
 }
 
 fn percentile(sorted: &[f64], q: f64) -> f64 {

@@ -8,3 +8,4 @@ pub mod simulate_drums;
 pub mod sweep;
 pub mod t1;
 pub mod thesis;
+pub mod tp;

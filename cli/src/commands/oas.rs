@@ -6,8 +6,8 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use clap::Args;
-use rocking::spectra::{self, Oas, OasLevel, SizeSearch};
-use serde::{Deserialize, Serialize};
+use rocking::spectra::report::OasReport;
+use rocking::spectra::{self, Oas};
 
 use super::sweep::{OasGridArgs, Shard, SimulationArgs};
 use crate::output::{print_json, read_json};
@@ -50,12 +50,12 @@ pub fn run(a: &OasArgs) -> Result<(), String> {
     let t0 = Instant::now();
     let result = match &a.record {
         None => {
-            let parts: Vec<OasJson> = a
+            let parts: Vec<OasReport> = a
                 .merge
                 .iter()
                 .map(|p| read_json(p))
                 .collect::<Result<_, _>>()?;
-            merged(parts)?
+            OasReport::merge(parts).ok_or("nothing to merge")?
         }
         Some(path) => {
             let record = super::sweep::read(path)?;
@@ -90,7 +90,7 @@ pub fn run(a: &OasArgs) -> Result<(), String> {
             );
         }
     } else {
-        print_json(&OasJson::of(&result, seconds))?;
+        print_json(&OasReport::of(&result, seconds))?;
     }
     if let Some(prefix) = &a.svg {
         for (name, chart) in charts(&result) {
@@ -106,134 +106,6 @@ pub fn run(a: &OasArgs) -> Result<(), String> {
         }
     }
     Ok(())
-}
-
-/// One level of `oas --json`: the library's level and, when a size overturns, the largest
-/// unsafe one with its `p` and `f = p · level`.
-#[derive(Serialize, Deserialize)]
-struct Level {
-    #[serde(flatten)]
-    level: OasLevel,
-    size: Option<f64>,
-    p: Option<f64>,
-    f: Option<f64>,
-}
-
-/// The summary of an OAS, also a row of `rocking t1` (with the `f_min` point flattened).
-#[derive(Serialize, Deserialize)]
-pub struct Summary {
-    pub record: String,
-    pub t1: Option<f64>,
-    pub t1_prime: Option<f64>,
-    pub beta: Option<f64>,
-    pub f_min: Option<f64>,
-    pub level_at_f_min: Option<f64>,
-    pub size_at_f_min: Option<f64>,
-    pub simulations: usize,
-    /// Wall time of the run [s].
-    pub seconds: f64,
-}
-
-impl Summary {
-    pub fn of(o: &Oas, seconds: f64) -> Summary {
-        let s = o.summary();
-        Summary {
-            record: o.record.clone(),
-            t1: s.t1,
-            t1_prime: s.fit.map(|f| f.t1_prime),
-            beta: s.fit.map(|f| f.beta),
-            f_min: s.f_min.map(|m| m.f),
-            level_at_f_min: s.f_min.map(|m| m.level),
-            size_at_f_min: s.f_min.map(|m| m.size),
-            simulations: s.simulations,
-            seconds,
-        }
-    }
-}
-
-/// How many boundary points each simplified spectrum predicts safe although they overturn.
-#[derive(Serialize, Deserialize)]
-struct Conservative {
-    eq21: usize,
-    eq21_approx: usize,
-    eq29: usize,
-    eq30: usize,
-}
-
-/// `oas --json`, and what `--merge` reads back.
-#[derive(Serialize, Deserialize)]
-struct OasJson {
-    record: String,
-    slenderness: f64,
-    blocks: usize,
-    impacts: u32,
-    search: SizeSearch,
-    gravity: f64,
-    sizes: Vec<f64>,
-    levels: Vec<Level>,
-    summary: Summary,
-    conservative: Option<Conservative>,
-}
-
-impl OasJson {
-    fn of(o: &Oas, seconds: f64) -> OasJson {
-        let levels = o
-            .levels
-            .iter()
-            .map(|l| {
-                let size = l.largest_unsafe.map(|i| o.sizes[i]);
-                let p = size.map(|r| o.block(r).frequency_parameter(o.gravity));
-                Level {
-                    level: *l,
-                    size,
-                    p,
-                    f: p.map(|p| p * l.level),
-                }
-            })
-            .collect();
-        let s = o.summary();
-        OasJson {
-            record: o.record.clone(),
-            slenderness: o.slenderness,
-            blocks: o.n_blocks,
-            impacts: o.n_impacts,
-            search: o.search,
-            gravity: o.gravity,
-            sizes: o.sizes.clone(),
-            levels,
-            summary: Summary::of(o, seconds),
-            conservative: s.t1.map(|t1| {
-                let c = o.check(t1, s.fit);
-                Conservative {
-                    eq21: c.eq21.len(),
-                    eq21_approx: c.eq21_approx.len(),
-                    eq29: c.eq29.len(),
-                    eq30: c.eq30.len(),
-                }
-            }),
-        }
-    }
-}
-
-/// Rebuilds an OAS from the `oas --json` outputs of level shards: their levels, in level order,
-/// on the first one's grid and settings.
-fn merged(parts: Vec<OasJson>) -> Result<Oas, String> {
-    let mut levels: Vec<OasLevel> = parts
-        .iter()
-        .flat_map(|p| p.levels.iter().map(|l| l.level))
-        .collect();
-    levels.sort_by(|a, b| a.level.total_cmp(&b.level));
-    let first = parts.into_iter().next().ok_or("nothing to merge")?;
-    Ok(Oas {
-        record: first.record,
-        slenderness: first.slenderness,
-        n_blocks: first.blocks,
-        n_impacts: first.impacts,
-        search: first.search,
-        sizes: first.sizes,
-        levels,
-        gravity: first.gravity,
-    })
 }
 
 /// The charts of an OAS: against `p` (Fig. 36), against `f` (Fig. 37) and against the size.

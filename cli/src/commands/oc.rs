@@ -6,8 +6,8 @@ use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
 use rocking::model::single_block::EquivalentBlock;
+use rocking::spectra::report::OcReport;
 use rocking::spectra::{self, column_of_size, linear_levels, log_sizes, PulseShape, SweepOptions};
-use serde::Serialize;
 
 use super::sweep::{count, positive, Shard, SimulationArgs};
 use crate::output::print_json;
@@ -36,35 +36,6 @@ impl Shape {
             Shape::Ricker => PulseShape::Ricker,
         }
     }
-}
-
-/// One grid point of `oc --json`.
-#[derive(Serialize)]
-struct Point {
-    t_p: f64,
-    a_p: f64,
-    p_tp: f64,
-    level: f64,
-    #[serde(rename = "unsafe")]
-    overturns: bool,
-}
-
-/// One point of the envelope: the lowest unsafe level at `p t_p` (`None`: none).
-#[derive(Serialize)]
-struct EnvelopePoint {
-    p_tp: f64,
-    level: Option<f64>,
-}
-
-/// `oc --json`.
-#[derive(Serialize)]
-struct OcJson {
-    shape: String,
-    blocks: usize,
-    p: f64,
-    a_p_min: f64,
-    points: Vec<Point>,
-    envelope: Vec<EnvelopePoint>,
 }
 
 /// Options of `rocking oc`.
@@ -132,35 +103,7 @@ pub fn run(a: &OcArgs) -> Result<(), String> {
         .map_err(|e| e.to_string())?;
     bar.finish_and_clear();
     if a.json {
-        let points = res
-            .normalised()
-            .iter()
-            .zip(
-                res.t_p
-                    .iter()
-                    .flat_map(|t| a_p.iter().map(move |ap| (*t, *ap))),
-            )
-            .map(|(&(p_tp, level, overturns), (t_p, a_p))| Point {
-                t_p,
-                a_p,
-                p_tp,
-                level,
-                overturns,
-            })
-            .collect();
-        let envelope = res
-            .normalised_envelope()
-            .iter()
-            .map(|&(p_tp, level)| EnvelopePoint { p_tp, level })
-            .collect();
-        print_json(&OcJson {
-            shape: shape.name(),
-            blocks: a.blocks,
-            p: mono_p,
-            a_p_min: mono_a_p_min,
-            points,
-            envelope,
-        })?;
+        print_json(&OcReport::of(&res, &a_p, a.blocks, mono_p, mono_a_p_min))?;
     } else {
         println!("shape,blocks,t_p,a_p,p_tp,level,unsafe");
         for (i, &t) in res.t_p.iter().enumerate() {

@@ -4,10 +4,10 @@
 use std::path::Path;
 use std::str::FromStr;
 
-use clap::Args;
+use clap::{Args, ValueEnum};
 use rocking::driver::{EventLocator, Integrator};
 use rocking::ground::records::{read_record, PlainFormat, Record};
-use rocking::spectra::{linear_levels, log_sizes, OasOptions, SizeSearch, SweepOptions};
+use rocking::spectra::{linear_levels, log_sizes, OasOptions, SizeSearch, SweepOptions, TimeStep};
 
 /// A finite number > 0.
 pub fn positive(s: &str) -> Result<f64, String> {
@@ -169,6 +169,67 @@ pub struct OasGridArgs {
     /// Bisection on the size instead of the thesis's scan from the largest size.
     #[arg(long)]
     pub bisection: bool,
+    /// How each OAS is computed where the thesis does not say (docs/t1-table.md, "Procedure
+    /// variants"); --tail and --dt-factor still apply on top.
+    #[arg(long, value_enum, default_value_t = Procedure::Converged)]
+    pub procedure: Procedure,
+}
+
+/// A way of computing an OAS that the thesis could have used: it states neither its time step,
+/// nor whether a run ends with the record, nor how its 80 levels are spaced. Each variant changes
+/// one of these choices of the default.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, ValueEnum)]
+pub enum Procedure {
+    /// The default, converged for accuracy: the whole record and 2/p of free rocking after it,
+    /// dt = min(record dt / 2, 1/(50 p)), 80 linear levels 1…10 with both ends.
+    #[default]
+    Converged,
+    /// The run ends with the record: no free rocking after the last sample.
+    RecordEnd,
+    /// The run ends 2/p after the last instant at which the scaled record reaches the uplift
+    /// acceleration (the end of the strong motion for that column), not with the record.
+    StrongMotion,
+    /// Wilson θ at the record's own sample interval: dt = record dt, whatever the block.
+    RecordDt,
+    /// 80 linear levels without the lower end: 1 + 9k/80, k = 1…80 (a_p = a_p,min left out).
+    LevelsOpen,
+    /// 80 levels log-spaced from 1 to 10.
+    LevelsLog,
+}
+
+impl Procedure {
+    /// The name on the command line.
+    pub fn name(self) -> String {
+        self.to_possible_value()
+            .map_or_else(String::new, |v| v.get_name().to_string())
+    }
+
+    /// Writes this procedure's choices into `o` (built from the default's), for `n` levels up
+    /// to `level_max`.
+    fn apply(self, o: &mut OasOptions, n: usize, level_max: f64) {
+        match self {
+            Procedure::Converged => {}
+            Procedure::RecordEnd => o.sweep.tail = 0.0,
+            Procedure::StrongMotion => o.sweep.cut_after_last_exceedance = true,
+            Procedure::RecordDt => {
+                o.sweep.time_step = TimeStep {
+                    record_fraction: 1.0,
+                    // 1e6 / p exceeds any record's dt: only the record's dt is left.
+                    block_fraction: 1e6,
+                    ..o.sweep.time_step
+                }
+            }
+            Procedure::LevelsOpen => {
+                o.levels = (1..=n)
+                    .map(|k| 1.0 + (level_max - 1.0) * k as f64 / n as f64)
+                    .collect();
+            }
+            Procedure::LevelsLog => {
+                o.levels = log_sizes(level_max, 1.0, n);
+                o.levels.reverse();
+            }
+        }
+    }
 }
 
 impl OasGridArgs {
@@ -186,6 +247,7 @@ impl OasGridArgs {
             },
             ..OasOptions::default()
         };
+        self.procedure.apply(&mut o, self.levels, self.level_max);
         simulation.apply(&mut o.sweep);
         o
     }

@@ -1,16 +1,18 @@
 //! `rocking t1`: the replacement impulse duration t₁ (Eq. 20), the fit t₁', β (Eq. 28) and f_min
-//! of records, each from its OAS; `--merge` joins the JSON of `--shard` runs.
+//! of records, each from its OAS, with the replacement sine duration t_p (Eq. 25) beside it;
+//! `--merge` joins the JSON of `--shard` runs; `--svg` draws t₁ against t_p (Fig. 53).
 
 use std::path::PathBuf;
 use std::time::Instant;
 
 use clap::Args;
-use rocking::spectra::{self, SizeSearch};
+use rocking::spectra::report::{SummaryReport as Summary, T1Row};
+use rocking::spectra::{self, statistics};
 use serde::{Deserialize, Serialize};
 
-use super::oas::Summary;
-use super::sweep::{OasGridArgs, Shard, SimulationArgs};
+use super::sweep::{OasGridArgs, Procedure, Shard, SimulationArgs};
 use crate::output::{print_json, read_json};
+use crate::plot::{Chart, Series, Style, COLORS};
 use crate::progress;
 
 /// Options of `rocking t1`.
@@ -32,18 +34,81 @@ pub struct T1Args {
     /// A JSON list instead of a table.
     #[arg(long)]
     pub json: bool,
+    /// Add how the run of the governing point (the f_min point) ended: overturning time,
+    /// impacts, the last exceedance of the uplift acceleration by the scaled record. With
+    /// --merge, one simulation per row (pass the options the rows were computed with: the
+    /// row's dt factor, slenderness, blocks and procedure are checked against them).
+    #[arg(long)]
+    pub explain: bool,
+    /// Write PREFIX-tp.svg: t₁ against the replacement sine duration t_p, with the correlation
+    /// and the least-squares lines (thesis Fig. 53).
+    #[arg(long, value_name = "PREFIX")]
+    pub svg: Option<PathBuf>,
+    /// With --svg: also write the chart as PNG.
+    #[arg(long, requires = "svg")]
+    pub png: bool,
 }
 
-/// One record's row of `t1 --json`: the summary of its OAS and the settings.
+/// One record's row of `t1 --json`: the library's row and, with `--explain`, the run of the
+/// governing point.
 #[derive(Serialize, Deserialize)]
 struct Row {
     #[serde(flatten)]
-    summary: Summary,
-    file: String,
-    slenderness: f64,
-    blocks: usize,
-    dt_factor: f64,
-    search: SizeSearch,
+    row: T1Row,
+    /// With --explain: the run of the governing point.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    governing: Option<Governing>,
+}
+
+impl std::ops::Deref for Row {
+    type Target = T1Row;
+    fn deref(&self) -> &T1Row {
+        &self.row
+    }
+}
+
+impl std::ops::DerefMut for Row {
+    fn deref_mut(&mut self) -> &mut T1Row {
+        &mut self.row
+    }
+}
+
+/// The file of a row (rows of `rocking t1` always have one).
+fn file_of(r: &T1Row) -> &str {
+    r.file.as_deref().unwrap_or("")
+}
+
+/// How the run of the governing point ended (`--explain`); times are record times [s].
+#[derive(Serialize, Deserialize)]
+struct Governing {
+    stop: String,
+    start: f64,
+    end: f64,
+    impacts: usize,
+    last_exceedance: f64,
+    record_duration: f64,
+    /// end − last_exceedance: how long after the strong motion the column overturned.
+    after_strong_motion: f64,
+}
+
+fn governing(
+    record: &rocking::ground::records::Record,
+    summary: &Summary,
+    o: &spectra::OasOptions,
+) -> Result<Option<Governing>, String> {
+    let (Some(level), Some(size)) = (summary.level_at_f_min, summary.size_at_f_min) else {
+        return Ok(None);
+    };
+    let run = spectra::point_run(record, level, size, o).map_err(|e| e.to_string())?;
+    Ok(run.map(|r| Governing {
+        stop: format!("{:?}", r.stop),
+        start: r.start,
+        end: r.end,
+        impacts: r.impacts,
+        last_exceedance: r.last_exceedance,
+        record_duration: r.record_duration,
+        after_strong_motion: r.end - r.last_exceedance,
+    }))
 }
 
 /// Runs the command.
@@ -59,13 +124,26 @@ pub fn run(a: &T1Args) -> Result<(), String> {
             let t0 = Instant::now();
             let tick = || bar.inc(1);
             let r = spectra::oas(&record, &o, Some(&tick)).map_err(|e| e.to_string())?;
+            let t_p = spectra::replacement_sine(&record).map(|s| s.t_p);
+            let summary = Summary::of(&r, t0.elapsed().as_secs_f64());
+            let governing = if a.explain {
+                governing(&record, &summary, &o)?
+            } else {
+                None
+            };
             rows.push(Row {
-                summary: Summary::of(&r, t0.elapsed().as_secs_f64()),
-                file: f.display().to_string(),
-                slenderness: o.slenderness,
-                blocks: o.n_blocks,
-                dt_factor: a.simulation.dt_factor,
-                search: o.search,
+                row: T1Row {
+                    summary,
+                    file: Some(f.display().to_string()),
+                    slenderness: o.slenderness,
+                    blocks: o.n_blocks,
+                    dt_factor: a.simulation.dt_factor,
+                    search: o.search,
+                    t_p,
+                    procedure: (a.grid.procedure != Procedure::Converged)
+                        .then(|| a.grid.procedure.name()),
+                },
+                governing,
             });
         }
         bar.finish_and_clear();
@@ -75,13 +153,43 @@ pub fn run(a: &T1Args) -> Result<(), String> {
         for p in &a.merge {
             rows.extend(read_json::<Vec<Row>>(p)?);
         }
-        rows.sort_by(|x, y| x.file.cmp(&y.file));
+        // Rows written before t_p was part of the output: t_p from the record, when readable.
+        for r in rows.iter_mut().filter(|r| r.t_p.is_none()) {
+            if let Ok(record) = super::sweep::read(std::path::Path::new(file_of(r))) {
+                r.t_p = spectra::replacement_sine(&record).map(|s| s.t_p);
+            }
+        }
+        if a.explain {
+            let o = a.grid.options(&a.simulation);
+            let procedure =
+                (a.grid.procedure != Procedure::Converged).then(|| a.grid.procedure.name());
+            for r in &mut rows {
+                if r.dt_factor != a.simulation.dt_factor
+                    || r.slenderness != o.slenderness
+                    || r.blocks != o.n_blocks
+                    || r.procedure != procedure
+                {
+                    return Err(format!(
+                        "--explain: {} was computed with other options (dt factor {}, \
+                         slenderness {}, blocks {}, procedure {}): pass the same",
+                        file_of(r),
+                        r.dt_factor,
+                        r.slenderness,
+                        r.blocks,
+                        r.procedure.as_deref().unwrap_or("converged")
+                    ));
+                }
+                let record = super::sweep::read(std::path::Path::new(file_of(r)))?;
+                r.governing = governing(&record, &r.summary, &o)?;
+            }
+        }
+        rows.sort_by(|x, y| file_of(x).cmp(file_of(y)));
         rows
     };
     if a.json {
         print_json(&rows)?;
     } else {
-        println!("record                          t1 [s]   t1' [s]  beta     f_min [1/s]");
+        println!("record                          t1 [s]   t1' [s]  beta     f_min [1/s] t_p [s]");
         for r in &rows {
             let s = &r.summary;
             let f = |v: Option<f64>| {
@@ -89,14 +197,122 @@ pub fn run(a: &T1Args) -> Result<(), String> {
                     .map_or("-".to_string(), |x| format!("{x:.3}"))
             };
             println!(
-                "{:<30} {:>8} {:>8} {:>8} {:>8}",
+                "{:<30} {:>8} {:>8} {:>8} {:>8} {:>8}",
                 s.record,
                 f(s.t1),
                 f(s.t1_prime),
                 f(s.beta),
-                f(s.f_min)
+                f(s.f_min),
+                f(r.t_p)
+            );
+            if let Some(g) = &r.governing {
+                println!(
+                    "    governing run: {} at {:.2} s after {} impacts; strong motion {:.2}-{:.2} s \
+                     of {:.2} s ({:+.2} s after it)",
+                    g.stop,
+                    g.end,
+                    g.impacts,
+                    g.start,
+                    g.last_exceedance,
+                    g.record_duration,
+                    g.after_strong_motion
+                );
+            }
+        }
+        let c = Correlation::of(&rows);
+        if let Some(r) = c.r {
+            println!(
+                "t1 against t_p: {} records, Pearson r = {r:.3}, least squares t1 = {:.3} t_p \
+                 (through the origin), t1 = {:.3} + {:.3} t_p",
+                c.pairs.len(),
+                c.slope.unwrap_or(f64::NAN),
+                c.line.map_or(f64::NAN, |l| l.0),
+                c.line.map_or(f64::NAN, |l| l.1),
             );
         }
     }
+    if let Some(prefix) = &a.svg {
+        let chart = Correlation::of(&rows).chart();
+        let file = |ext: &str| {
+            let mut s = prefix.as_os_str().to_owned();
+            s.push(format!("-tp.{ext}"));
+            PathBuf::from(s)
+        };
+        chart.write(&file("svg"))?;
+        if a.png {
+            chart.write(&file("png"))?;
+        }
+    }
     Ok(())
+}
+
+/// t₁ against t_p over the rows that have both (thesis Fig. 53).
+struct Correlation {
+    /// (t_p, t₁).
+    pairs: Vec<(f64, f64)>,
+    r: Option<f64>,
+    slope: Option<f64>,
+    line: Option<(f64, f64)>,
+}
+
+impl Correlation {
+    fn of(rows: &[Row]) -> Correlation {
+        let pairs: Vec<(f64, f64)> = rows
+            .iter()
+            .filter_map(|r| Some((r.t_p?, r.summary.t1?)))
+            .collect();
+        Correlation {
+            r: statistics::pearson(&pairs),
+            slope: statistics::slope_through_origin(&pairs),
+            line: statistics::least_squares(&pairs),
+            pairs,
+        }
+    }
+
+    /// The scatter of Fig. 53 with the line y = x and the two least-squares lines.
+    fn chart(&self) -> Chart {
+        let top = self.pairs.iter().fold(0.1_f64, |m, p| m.max(p.0).max(p.1)) * 1.05;
+        let mut series = vec![
+            Series {
+                name: format!("records ({})", self.pairs.len()),
+                points: self.pairs.clone(),
+                style: Style::Points,
+                color: COLORS[0],
+            },
+            Series {
+                name: "t1 = t_p".into(),
+                points: vec![(0.0, 0.0), (top, top)],
+                style: Style::Line,
+                color: COLORS[7],
+            },
+        ];
+        if let Some(b) = self.slope {
+            series.push(Series {
+                name: format!("least squares through 0: t1 = {b:.3} t_p"),
+                points: vec![(0.0, 0.0), (top, b * top)],
+                style: Style::Dashed,
+                color: COLORS[1],
+            });
+        }
+        if let Some((a, b)) = self.line {
+            series.push(Series {
+                name: format!("least squares: t1 = {a:.3} + {b:.3} t_p"),
+                points: vec![(0.0, a), (top, a + b * top)],
+                style: Style::Dashed,
+                color: COLORS[2],
+            });
+        }
+        Chart {
+            title: format!(
+                "t1 against the replacement sine duration t_p (Fig. 53): r = {}",
+                self.r.map_or("-".into(), |r| format!("{r:.2}"))
+            ),
+            x_label: "t_p [s] (Eq. 25)".into(),
+            y_label: "t1 [s] (Eq. 20)".into(),
+            x_range: Some((0.0, top)),
+            y_range: Some((0.0, top)),
+            series,
+            ..Chart::default()
+        }
+    }
 }

@@ -17,9 +17,13 @@ def main(argv=None):
     p.add_argument("--duration", type=float, help="stop earlier than the scene's duration (s)")
     p.add_argument("--max-events", type=int, help="stop after this many events")
     p.add_argument("--dt", type=float, help="OpenSees's time step (default min(scene dt, 1e-4))")
+    p.add_argument("--block-stiffness", type=float, default=2e10,
+                   help="Young's modulus of the blocks' beams (Pa, default 2e10); heavy, tall blocks need more "
+                        "to stay stiff (docs/opensees.md §5)")
     p.add_argument("--cli", help="path of the rocking command line for --compare (default $ROCKING_CLI or PATH)")
     args = p.parse_args(argv)
-    result = run(args.scene, dt=args.dt, duration=args.duration, max_events=args.max_events)
+    result = run(args.scene, dt=args.dt, duration=args.duration, max_events=args.max_events,
+                 block_stiffness=args.block_stiffness)
     if args.compare:
         duration = result["summary"]["t_end"]
         rigid = rigid_driver_events(args.scene, duration=duration, cli=args.cli)

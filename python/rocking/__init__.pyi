@@ -1,0 +1,186 @@
+"""Type hints of the package ``rocking``: the extension's functions (``_rocking.pyi``) and the
+Python layer (simulate, spectra, design, plots)."""
+
+from os import PathLike
+from typing import Any, Callable, Dict, List, Literal, Mapping, Optional, Sequence, Union, overload
+
+import numpy as np
+import numpy.typing as npt
+
+from . import plot as plot
+from ._rocking import (
+    Pulse as Pulse,
+    Record as Record,
+    Report as Report,
+    RockingError as RockingError,
+    __version__ as __version__,
+    check_configuration as check_configuration,
+    column_mass_matrix as column_mass_matrix,
+    error_codes as error_codes,
+    full_sine as full_sine,
+    half_sine as half_sine,
+    half_sines as half_sines,
+    impact_model as impact_model,
+    mavroeidis_papageorgiou as mavroeidis_papageorgiou,
+    opening_model as opening_model,
+    read_record as read_record,
+    rectangular as rectangular,
+    reduce as reduce,
+    ricker as ricker,
+    triangular as triangular,
+)
+
+ERROR_CODES: Dict[str, int]
+GRAVITY: float
+
+Float64Array = npt.NDArray[np.float64]
+Int8Array = npt.NDArray[np.int8]
+Int64Array = npt.NDArray[np.int64]
+BoolArray = npt.NDArray[np.bool_]
+Path = Union[str, "PathLike[str]"]
+Progress = Callable[[int, int], Any]
+
+class Simulation:
+    """The result of :func:`simulate` (``rocking simulate``'s history, events and summary)."""
+
+    title: str
+    t: Float64Array
+    """Times (s), ``(samples,)``."""
+    angles: Float64Array
+    """Signed interface angles ``phĭ_k + phî_k`` (rad), ``(samples, n)``."""
+    rates: Float64Array
+    """Their rates (rad/s), ``(samples, n)``."""
+    block_rotations: Float64Array
+    """Absolute block rotations (rad), ``(samples, n)``."""
+    statuses: Int8Array
+    """Interface statuses (−1, 0, +1), ``(samples, n)``."""
+    dof_angles: Float64Array
+    """The ``2n`` DOF angles (SPEC §1 order), ``(samples, 2n)``."""
+    dof_rates: Float64Array
+    """The ``2n`` DOF rates, ``(samples, 2n)``."""
+    events: List[Dict[str, Any]]
+    """The objects of ``events.jsonl``."""
+    summary: Dict[str, Any]
+    """``summary.json``."""
+    @property
+    def overturned(self) -> bool: ...
+    @property
+    def t_end(self) -> float: ...
+    @property
+    def stop_reason(self) -> str: ...
+    def events_of(self, kind: str) -> List[Dict[str, Any]]: ...
+    def plot(self, ax: Any = None, events: bool = True) -> Any: ...
+
+def simulate(scene: Union[Path, Mapping[str, Any]], base: Optional[Path] = None) -> Simulation:
+    """A scene (a file, or a dict with the CLI's schema) through the reference driver (thesis
+    3.3, SPEC §5), as ``rocking simulate``."""
+
+class Oas:
+    """An overturning acceleration spectrum (thesis Fig. 36, 37, 43)."""
+
+    record: str
+    slenderness: float
+    blocks: int
+    impacts: int
+    search: str
+    gravity: float
+    i_cr: float
+    sizes: Float64Array
+    levels: Float64Array
+    largest_unsafe: Int64Array
+    size: Float64Array
+    p: Float64Array
+    f: Float64Array
+    simulations: Int64Array
+    summary: Dict[str, Any]
+    conservative: Optional[Dict[str, int]]
+    @property
+    def t1(self) -> Optional[float]: ...
+    @property
+    def unsafe(self) -> BoolArray: ...
+    def to_dict(self) -> Dict[str, Any]: ...
+    def plot(self, against: Literal["p", "f", "size"] = "p", ax: Any = None, fits: bool = True) -> Any: ...
+
+class Oc:
+    """An overturning curve (thesis Fig. 8, 33, 40)."""
+
+    shape: str
+    blocks: int
+    p: float
+    a_p_min: float
+    p_tp: Float64Array
+    t_p: Float64Array
+    levels: Float64Array
+    a_p: Float64Array
+    unsafe: BoolArray
+    envelope: Float64Array
+    def to_dict(self) -> Dict[str, Any]: ...
+    def plot(self, ax: Any = None) -> Any: ...
+
+def oas(
+    record: Union[Record, Path],
+    *,
+    slenderness: float = 12.0,
+    levels: Union[int, npt.ArrayLike] = 80,
+    level_max: float = 10.0,
+    sizes: Union[int, npt.ArrayLike] = 120,
+    size_min: float = 0.1,
+    size_max: float = 1000.0,
+    blocks: int = 1,
+    bisection: bool = False,
+    impacts: int = 1,
+    dt_factor: float = 1.0,
+    tail: Optional[float] = None,
+    hermite: bool = False,
+    rk4: bool = False,
+    full_runs: bool = False,
+    threads: Optional[int] = None,
+    progress: Optional[Progress] = None,
+) -> Oas:
+    """The OAS of a record (thesis 5.2), as ``rocking oas --json``; parallel, Ctrl-C stops it."""
+
+@overload
+def t1(records: Union[Record, Path], **options: Any) -> Dict[str, Any]: ...
+@overload
+def t1(records: Sequence[Union[Record, Path]], **options: Any) -> List[Dict[str, Any]]: ...
+def oc(
+    shape: str = "half-sine",
+    *,
+    blocks: int = 1,
+    slenderness: float = 12.0,
+    size: float = 1.0,
+    ptp: Union[int, npt.ArrayLike] = 40,
+    ptp_min: float = 0.1,
+    ptp_max: float = 10.0,
+    levels: Union[int, npt.ArrayLike] = 40,
+    level_max: float = 10.0,
+    impacts: int = 1,
+    dt_factor: float = 1.0,
+    tail: Optional[float] = None,
+    hermite: bool = False,
+    rk4: bool = False,
+    full_runs: bool = False,
+    threads: Optional[int] = None,
+    progress: Optional[Progress] = None,
+) -> Oc:
+    """The overturning curve of a pulse shape (thesis Fig. 8, 33, 40), as ``rocking oc --json``."""
+
+def design_width(
+    height: npt.ArrayLike,
+    pga: npt.ArrayLike,
+    t1: npt.ArrayLike,
+    mass: Literal["uniform", "top"] = "uniform",
+    g: float = 9.81,
+) -> Dict[str, Any]:
+    """The required pier width (thesis Eq. 31, 23, 24), as ``rocking design width --json``."""
+
+def design_check(
+    width: npt.ArrayLike,
+    height: npt.ArrayLike,
+    pga: npt.ArrayLike,
+    t1: npt.ArrayLike,
+    mass: Literal["uniform", "top"] = "uniform",
+    g: float = 9.81,
+    exact_icr: bool = False,
+) -> Dict[str, Any]:
+    """The Eq. 31 verdict for a pier, as ``rocking design check --json``."""

@@ -1,0 +1,226 @@
+"""Overturning spectra (thesis Chapter 5; SPEC §7): ``oas``, ``t1`` and ``oc``, with the options
+and the JSON of ``rocking oas``, ``rocking t1`` and ``rocking oc``, and numpy arrays out.
+
+The sweeps run in parallel (rayon, every core unless ``threads``) without the GIL, and stop on
+Ctrl-C (``KeyboardInterrupt``) between levels (OAS) or pulse durations (OC). The results do not
+depend on the number of threads: every level and every duration is the library's own call."""
+import copy
+import numbers
+import os
+
+import numpy as np
+
+from . import _rocking
+
+_SIMULATION_DOC = """
+    Simulations (as the CLI's options): ``impacts`` consecutive impacts per closing (1: Housner;
+    2: the thesis's recommended model), ``dt_factor`` a factor on the time step rule
+    (``min(Δt_record/2, t_p/100, 1/(50 p))``), ``tail`` simulated time after the motion in units
+    of ``1/p`` (default 2), ``hermite`` Hermite event location, ``rk4`` RK4 with it,
+    ``full_runs`` every run to its end (same verdicts, slower). ``threads``: rayon threads
+    (default every core; results identical). ``progress``: a callable ``progress(done, total)``
+    called as levels (durations) finish."""
+
+
+def _optional(v):
+    return float("nan") if v is None else v
+
+
+class Oas:
+    """An overturning acceleration spectrum (thesis Fig. 36, 37, 43): for each level
+    ``a_p / a_p,min``, the largest size ``R`` of the grid that the scaled record overturns.
+
+    Arrays, one entry per level: ``levels``, ``largest_unsafe`` (index into ``sizes``, −1 when no
+    size overturns), ``size`` (m), ``p`` (1/s) and ``f = p · level`` (Eq. 19; NaN when no size
+    overturns), ``simulations``. ``sizes``: the size grid (m, descending). ``summary``: ``t1``
+    (Eq. 20), ``t1_prime`` and ``beta`` (the inclined line of Eq. 28), ``f_min``,
+    ``level_at_f_min``, ``size_at_f_min``, ``simulations``, ``seconds`` (wall time).
+    ``conservative``: how many boundary points Eq. 21, 21 with ``i_cr = 1``, 29 and 30 predict
+    safe although they overturn. ``i_cr``: Eq. 18 of the slenderness. :meth:`to_dict` is the
+    JSON of ``rocking oas --json``.
+    """
+
+    def __init__(self, raw, i_cr):
+        self._raw = raw
+        self.record = raw["record"]
+        self.slenderness = raw["slenderness"]
+        self.blocks = raw["blocks"]
+        self.impacts = raw["impacts"]
+        self.search = raw["search"]
+        self.gravity = raw["gravity"]
+        self.i_cr = i_cr
+        self.sizes = np.array(raw["sizes"], dtype=float)
+        lv = raw["levels"]
+        self.levels = np.array([x["level"] for x in lv], dtype=float)
+        self.largest_unsafe = np.array([-1 if x["largest_unsafe"] is None else x["largest_unsafe"] for x in lv],
+                                       dtype=np.int64)
+        self.size = np.array([_optional(x["size"]) for x in lv], dtype=float)
+        self.p = np.array([_optional(x["p"]) for x in lv], dtype=float)
+        self.f = np.array([_optional(x["f"]) for x in lv], dtype=float)
+        self.simulations = np.array([x["simulations"] for x in lv], dtype=np.int64)
+        self.summary = raw["summary"]
+        self.conservative = raw["conservative"]
+
+    @property
+    def t1(self):
+        """The replacement impulse duration ``t_1 = i_cr / f_min`` (s, Eq. 20); None if nothing
+        overturns."""
+        return self.summary["t1"]
+
+    @property
+    def unsafe(self):
+        """Boolean mask of the levels at which some size of the grid overturns."""
+        return self.largest_unsafe >= 0
+
+    def to_dict(self):
+        """``rocking oas --json`` (a new dict)."""
+        return copy.deepcopy(self._raw)
+
+    def plot(self, against="p", ax=None, fits=True):
+        """The spectrum against ``p`` (Fig. 36), ``f`` (the transformed OAS, Fig. 37) or the
+        ``size``, with the simplified spectra (Eq. 21, 30; the lines of Eq. 20, 28 against
+        ``f``) when ``fits``. matplotlib (``pip install './python[plot]'``). Returns the axes."""
+        from . import plot
+
+        return plot.oas(self, against=against, ax=ax, fits=fits)
+
+    def __repr__(self):
+        t1 = self.t1
+        return (f"Oas({self.record!r}: {len(self.levels)} levels x {len(self.sizes)} sizes, "
+                f"t1 = {'-' if t1 is None else f'{t1:.4f} s'}, {self.summary['simulations']} simulations)")
+
+
+class Oc:
+    """An overturning curve (thesis Fig. 8, 33, 40): safe or unsafe on a grid of ``p t_p``
+    (rows) × ``a_p / a_p,min`` (columns).
+
+    ``p_tp``, ``t_p`` (s): the rows; ``levels``, ``a_p`` (m/s²): the columns; ``unsafe``: a
+    boolean array ``(rows, columns)``; ``envelope``: per row the lowest unsafe level (NaN: none);
+    ``p``, ``a_p_min``: of the equivalent block. :meth:`to_dict` is ``rocking oc --json``.
+    """
+
+    def __init__(self, raw):
+        self._raw = raw
+        self.shape = raw["shape"]
+        self.blocks = raw["blocks"]
+        self.p = raw["p"]
+        self.a_p_min = raw["a_p_min"]
+        env = raw["envelope"]
+        self.p_tp = np.array([e["p_tp"] for e in env], dtype=float)
+        self.envelope = np.array([_optional(e["level"]) for e in env], dtype=float)
+        rows, points = len(env), raw["points"]
+        cols = len(points) // rows if rows else 0
+        self.t_p = np.array([points[i * cols]["t_p"] for i in range(rows)], dtype=float) if cols else self.p_tp / self.p
+        self.levels = np.array([q["level"] for q in points[:cols]], dtype=float)
+        self.a_p = np.array([q["a_p"] for q in points[:cols]], dtype=float)
+        self.unsafe = np.array([q["unsafe"] for q in points], dtype=bool).reshape(rows, cols)
+
+    def to_dict(self):
+        """``rocking oc --json`` (a new dict)."""
+        return copy.deepcopy(self._raw)
+
+    def plot(self, ax=None):
+        """The unsafe grid points and the envelope against ``p t_p`` (log axis), as Fig. 33a.
+        matplotlib (``pip install './python[plot]'``). Returns the axes."""
+        from . import plot
+
+        return plot.oc(self, ax=ax)
+
+    def __repr__(self):
+        return (f"Oc({self.shape}, {self.blocks} block(s): {self.unsafe.shape[0]} x {self.unsafe.shape[1]} points, "
+                f"{int(self.unsafe.sum())} unsafe)")
+
+
+def _count(x):
+    """A count given as any integer (numpy's too) is a Python int; anything else is values."""
+    return int(x) if isinstance(x, numbers.Integral) else x
+
+
+def _numbers(**args):
+    """A TypeError naming the argument that is not a number (``None`` allowed for ``tail`` and
+    ``threads``): the extension's own message names it on some Python versions only."""
+    for name, v in args.items():
+        if v is None and name in ("tail", "threads"):
+            continue
+        integral = name in ("blocks", "impacts", "threads")
+        kind = numbers.Integral if integral else numbers.Real
+        if isinstance(v, bool) or not isinstance(v, kind):
+            raise TypeError(f"{name}: expected {'an integer' if integral else 'a number'}, got {type(v).__name__}")
+
+
+def _grid_args(slenderness, levels, level_max, sizes, size_min, size_max, blocks, bisection, impacts, dt_factor,
+               tail, hermite, rk4, full_runs, threads, progress):
+    _numbers(slenderness=slenderness, level_max=level_max, size_min=size_min, size_max=size_max, blocks=blocks,
+             impacts=impacts, dt_factor=dt_factor, tail=tail, threads=threads)
+    return (slenderness, _count(levels), level_max, _count(sizes), size_min, size_max, blocks, bool(bisection),
+            impacts, dt_factor, tail, bool(hermite), bool(rk4), bool(full_runs), threads, progress)
+
+
+def oas(record, *, slenderness=12.0, levels=80, level_max=10.0, sizes=120, size_min=0.1, size_max=1000.0,
+        blocks=1, bisection=False, impacts=1, dt_factor=1.0, tail=None, hermite=False, rk4=False,
+        full_runs=False, threads=None, progress=None):
+    """The overturning acceleration spectrum of a record (thesis 5.2, Fig. 36, 37, 43), as
+    ``rocking oas RECORD --json``: for each level ``a_p / a_p,min`` the largest size ``R`` (half
+    diagonal of the equivalent block, H/B = ``slenderness``) that the record scaled to
+    ``level · a_p,min`` overturns, scanning the sizes from the largest (the thesis's search;
+    ``bisection``: approximate, faster).
+
+    ``record``: a :class:`rocking.Record` or the path of a record file (``.AT2`` in g, plain text
+    in m/s², as the CLI reads it). Grid (the thesis's by default): ``levels`` a count (linear
+    from 1 to ``level_max``) or the levels themselves; ``sizes`` a count (log-spaced from
+    ``size_max`` down to ``size_min``, m) or the sizes, descending; ``blocks`` equal blocks in
+    the column.
+    {simulation}
+
+    Returns an :class:`Oas`."""
+    raw, i_cr = _rocking._oas(record, *_grid_args(slenderness, levels, level_max, sizes, size_min, size_max, blocks,
+                                                  bisection, impacts, dt_factor, tail, hermite, rk4, full_runs,
+                                                  threads, progress))
+    return Oas(raw, i_cr)
+
+
+oas.__doc__ = oas.__doc__.replace("{simulation}", _SIMULATION_DOC.strip())
+
+
+def t1(records, *, slenderness=12.0, levels=80, level_max=10.0, sizes=120, size_min=0.1, size_max=1000.0,
+       blocks=1, bisection=False, impacts=1, dt_factor=1.0, tail=None, hermite=False, rk4=False,
+       full_runs=False, threads=None, progress=None):
+    """The replacement impulse duration ``t_1 = i_cr / f_min`` (thesis Eq. 20) of a record, with
+    the inclined line of Eq. 28 (``t1_prime``, ``beta``) and ``f_min``, each from the record's OAS
+    (same options as :func:`oas`), as ``rocking t1 RECORD --json``.
+
+    ``records``: a :class:`rocking.Record` or a path: returns one dict (``record``, ``t1``,
+    ``t1_prime``, ``beta``, ``f_min``, ``level_at_f_min``, ``size_at_f_min``, ``simulations``,
+    ``seconds``, ``file`` (the path; None for a Record), ``slenderness``, ``blocks``,
+    ``dt_factor``, ``search``, ``t_p`` — the replacement sine duration of Eq. 25); a list of them:
+    a list of dicts, in order."""
+    single = not isinstance(records, (list, tuple))
+    items = [records] if single else list(records)
+    items = [os.fspath(r) if isinstance(r, os.PathLike) else r for r in items]
+    rows = _rocking._t1(items, *_grid_args(slenderness, levels, level_max, sizes, size_min, size_max, blocks,
+                                           bisection, impacts, dt_factor, tail, hermite, rk4, full_runs, threads,
+                                           progress))
+    return rows[0] if single else rows
+
+
+def oc(shape="half-sine", *, blocks=1, slenderness=12.0, size=1.0, ptp=40, ptp_min=0.1, ptp_max=10.0, levels=40,
+       level_max=10.0, impacts=1, dt_factor=1.0, tail=None, hermite=False, rk4=False, full_runs=False, threads=None,
+       progress=None):
+    """The overturning curve of a pulse shape (thesis Fig. 8, 33, 40), as ``rocking oc --json``:
+    safe or unsafe for a column of ``blocks`` equal blocks (size ``R``, m, of the equivalent block
+    of H/B = ``slenderness``) on a grid of ``p t_p`` × ``a_p / a_p,min``.
+
+    ``shape``: ``half-sine``, ``full-sine``, ``three-half-sines``, ``rectangular``,
+    ``triangular`` or ``ricker`` (``t_p``: the duration of one lobe; the Ricker wavelet's peak
+    frequency is ``1/t_p``). ``ptp``: a count (log-spaced from ``ptp_min`` to ``ptp_max``) or the
+    values of ``p t_p``; ``levels``: a count (linear from 1 to ``level_max``) or the levels.
+    {simulation}
+
+    Returns an :class:`Oc`."""
+    _numbers(blocks=blocks, slenderness=slenderness, size=size, ptp_min=ptp_min, ptp_max=ptp_max, level_max=level_max,
+             impacts=impacts, dt_factor=dt_factor, tail=tail, threads=threads)
+    return Oc(_rocking._oc(shape, blocks, slenderness, size, _count(ptp), ptp_min, ptp_max, _count(levels), level_max,
+                           impacts, dt_factor, tail, bool(hermite), bool(rk4), bool(full_runs), threads, progress))
+
+
+oc.__doc__ = oc.__doc__.replace("{simulation}", _SIMULATION_DOC.strip())

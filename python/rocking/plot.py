@@ -1,0 +1,117 @@
+"""Plots of the package's results with matplotlib, an optional dependency (``pip install
+'./python[plot]'``): importing :mod:`rocking` never needs it; these functions import it when
+called. Each draws into ``ax`` (a new figure's axes by default) and returns the axes.
+
+- :func:`simulation`: block rotations against time with the events marked (as ``rocking
+  simulate --plot``);
+- :func:`oas`: an overturning acceleration spectrum against ``p`` (Fig. 36), ``f`` (Fig. 37) or
+  the size, with the simplified spectra (as ``rocking oas --svg``);
+- :func:`oc`: an overturning curve (Fig. 33a, as ``rocking oc --svg``).
+"""
+import numpy as np
+
+from . import _rocking
+
+
+def _pyplot():
+    try:
+        import matplotlib.pyplot as plt
+    except ImportError as e:
+        raise ImportError("rocking's plots need matplotlib: pip install './python[plot]'") from e
+    return plt
+
+
+def _axes(ax):
+    if ax is not None:
+        return ax
+    _, ax = _pyplot().subplots()
+    return ax
+
+
+#: Event markers: colour and line style by kind.
+EVENT_STYLE = {
+    "opening": ("tab:green", ":"),
+    "impact": ("tab:orange", "--"),
+    "settled": ("tab:gray", "-."),
+    "overturned": ("black", "-"),
+    "sliding": ("black", "-"),
+    "tension": ("black", "-"),
+}
+
+
+def simulation(result, ax=None, events=True):
+    """Block rotations (rad) of a :class:`rocking.Simulation` against time, one line per block,
+    and a vertical line at each event (``events``)."""
+    ax = _axes(ax)
+    for k in range(result.block_rotations.shape[1]):
+        ax.plot(result.t, result.block_rotations[:, k], label=f"block {k}")
+    if events:
+        seen = set()
+        for e in result.events:
+            colour, style = EVENT_STYLE.get(e["kind"], ("black", "-"))
+            label = e["kind"] if e["kind"] not in seen else None
+            seen.add(e["kind"])
+            ax.axvline(e["t"], color=colour, linestyle=style, linewidth=0.8, label=label)
+    ax.set_xlabel("t [s]")
+    ax.set_ylabel("block rotation [rad]")
+    ax.set_title(result.title)
+    ax.legend(fontsize="small")
+    return ax
+
+
+def oas(result, against="p", ax=None, fits=True):
+    """The boundary of a :class:`rocking.Oas` (the largest unsafe size at each level) against
+    ``p`` (1/s, Fig. 36), ``f = p a_p / a_p,min`` (1/s, the transformed OAS, Fig. 37) or the
+    ``size`` R (m, log axis); with ``fits``, the simplified spectrum of Eq. 21 (``t_1``, exact
+    ``i_cr``) and Eq. 30 (``t_1'``, ``β``) — against ``f``, the lines of Eq. 20 and 28."""
+    if against not in ("p", "f", "size"):
+        raise ValueError(f"against = {against!r}: expected 'p', 'f' or 'size'")
+    ax = _axes(ax)
+    m = result.unsafe
+    x = {"p": result.p, "f": result.f, "size": result.size}[against][m]
+    ax.plot(x, result.levels[m], "o", markersize=3, label="largest unsafe size")
+    s = result.summary
+    lmax = max(float(result.levels.max(initial=1.0)), 1.0)
+    if fits and s["t1"] is not None:
+        t1, tp, beta = s["t1"], s["t1_prime"], s["beta"]
+        if against == "f":
+            f_min = result.i_cr / t1
+            ax.plot([f_min, f_min], [1.0, lmax], "--", label=f"f_min = i_cr / t1 (Eq. 20), t1 = {t1:.3f} s")
+            if tp is not None and beta is not None:
+                lv = np.array([1.0, lmax])
+                ax.plot(lv / beta + 1.0 / tp, lv, "--", label=f"Eq. 28, t1' = {tp:.3f} s, beta = {beta:.2f}")
+        else:
+            if against == "p":
+                p = np.linspace(0.0, np.nanmax(x, initial=1.0) * 1.1, 401)[1:]
+                xs = p
+            else:
+                xs = np.geomspace(result.sizes.min(), result.sizes.max(), 401)
+                # p of the equivalent block of each size: p = sqrt(g / (4/3 R)) (Eq. 13)
+                p = np.sqrt(result.gravity / (4.0 / 3.0 * xs))
+            eq21, eq30 = _rocking._simplified_oas(p, t1, result.i_cr, tp, beta)
+            ax.plot(xs, eq21, "--", label=f"Eq. 21, t1 = {t1:.3f} s")
+            if eq30 is not None:
+                ax.plot(xs, eq30, "--", label=f"Eq. 30, t1' = {tp:.3f} s, beta = {beta:.2f}")
+    ax.set_xlabel({"p": "p [1/s]", "f": "f = p a_p / a_p,min [1/s]", "size": "size R [m] (half diagonal)"}[against])
+    if against == "size":
+        ax.set_xscale("log")
+    ax.set_ylabel("a_p / a_p,min")
+    ax.set_ylim(0.0, lmax)
+    ax.set_title(f"OAS, {result.record}")
+    ax.legend(fontsize="small")
+    return ax
+
+
+def oc(result, ax=None):
+    """The unsafe points of a :class:`rocking.Oc` and its envelope (the lowest unsafe level at
+    each ``p t_p``), against ``p t_p`` on a log axis (Fig. 33a)."""
+    ax = _axes(ax)
+    rows, cols = np.nonzero(result.unsafe)
+    ax.plot(result.p_tp[rows], result.levels[cols], "o", markersize=3, label="overturns")
+    ax.plot(result.p_tp, result.envelope, "-", label="envelope")
+    ax.set_xscale("log")
+    ax.set_xlabel("p t_p")
+    ax.set_ylabel("a_p / a_p,min")
+    ax.set_title(f"Overturning curve, {result.shape}, {result.blocks} block{'s' if result.blocks != 1 else ''}")
+    ax.legend(fontsize="small")
+    return ax

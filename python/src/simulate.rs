@@ -1,0 +1,204 @@
+//! `rocking.simulate`: a scene (the CLI's schema, parsed by the library's `rocking::scene`)
+//! through the reference driver (thesis 3.3, SPEC §5), with what `rocking simulate` writes: the
+//! history (`history.csv`'s columns as numpy arrays), the events (`events.jsonl`'s objects) and
+//! the summary (`summary.json`'s fields).
+
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+use std::time::Instant;
+
+use numpy::ndarray::Array2;
+use numpy::{IntoPyArray, PyArray1};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use rocking::driver::{self, EnergyBalance, EventKind, History, Outcome, StopReason};
+use rocking::ground::excitation::Excitation;
+use rocking::ground::FnMotion;
+use rocking::scene::{self, Scene, SceneSpec};
+use rocking::Status;
+use serde::Serialize;
+
+use crate::errors::value_error;
+use crate::ground::Record;
+use crate::json::to_python;
+
+/// Runs a scene file (`path`) or a scene given as JSON text (`text`, record paths relative to
+/// `base`, titled `name` unless it has a title). `record`, if given, replaces the scene's
+/// excitation (a `Record` object, which the JSON schema can only name by path). Returns a dict:
+/// `t`, `dof_angles`, `dof_rates`, `angles`, `rates`, `block_rotations`, `statuses` (arrays),
+/// `events` (list of dicts), `summary` (dict), `title`.
+#[pyfunction]
+#[pyo3(signature = (path = None, text = None, base = None, name = None, record = None))]
+pub fn _simulate<'py>(
+    py: Python<'py>,
+    path: Option<PathBuf>,
+    text: Option<&str>,
+    base: Option<PathBuf>,
+    name: Option<&str>,
+    record: Option<PyRef<'py, Record>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let (mut scene, scene_name) = match (&path, text) {
+        (Some(p), None) => {
+            // A missing file is the OSError Python users expect (FileNotFoundError, …).
+            std::fs::metadata(p)?;
+            let s = scene::load(p).map_err(|e| value_error(e.to_string()))?;
+            (s, Some(p.display().to_string()))
+        }
+        (None, Some(t)) => {
+            let spec: SceneSpec =
+                serde_json::from_str(t).map_err(|e| value_error(e.to_string()))?;
+            let base = base.unwrap_or_else(|| PathBuf::from("."));
+            let s = scene::build(spec, &base, name.unwrap_or("scene"))
+                .map_err(|e| value_error(e.to_string()))?;
+            (s, None)
+        }
+        _ => return Err(value_error("give either a scene path or its JSON text")),
+    };
+    // The contact scheme (joints that slide or fly, `rocking simulate`'s drums) has other
+    // outputs; until the package exposes them, refuse rather than run the rigid driver instead.
+    if scene.contact.is_some() {
+        return Err(value_error(
+            "scheme: scenes whose joints slide or fly (scheme \"moreau\", or on_sliding / on_tension) \
+             run the contact scheme, \
+             which rocking.simulate does not support yet (use `rocking simulate`)",
+        ));
+    }
+    if let Some(r) = record {
+        scene.excitation = Excitation::record(r.inner.clone())
+            .map_err(|e| value_error(format!("excitation: {e}")))?;
+    }
+    let (outcome, wall) = py.detach(|| {
+        let excitation = &scene.excitation;
+        let motion = FnMotion(|t| excitation.acceleration(t), excitation.end_time());
+        let started = Instant::now();
+        let outcome = driver::simulate(&scene.column, &motion, &scene.options, None);
+        (outcome, started.elapsed().as_secs_f64())
+    });
+    let outcome = outcome.map_err(|e| value_error(e.to_string()))?;
+
+    let d = PyDict::new(py);
+    let empty = History {
+        n_interfaces: scene.column.n_interfaces(),
+        ..History::default()
+    };
+    let kept = outcome.history.as_ref().filter(|_| scene.output.history);
+    history_arrays(&d, kept.unwrap_or(&empty))?;
+    d.set_item("events", to_python(py, &outcome.events)?)?;
+    let summary = Summary::of(&scene, scene_name, &outcome, wall);
+    d.set_item("summary", to_python(py, &summary)?)?;
+    d.set_item("title", &scene.title)?;
+    Ok(d)
+}
+
+/// The history's columns (`history.csv`): per sample the DOF angles and rates (`2n`), the signed
+/// interface angles and rates (`phĭ_k + phî_k`), the block rotations and the statuses (`n`).
+fn history_arrays(d: &Bound<'_, PyDict>, h: &History) -> PyResult<()> {
+    let py = d.py();
+    let (n, len) = (h.n_interfaces, h.len());
+    let signed = |dof: &[f64]| -> Vec<f64> {
+        dof.chunks_exact(2 * n)
+            .flat_map(|row| (0..n).map(move |k| row[k] + row[n + k]))
+            .collect()
+    };
+    let table = |values: Vec<f64>, cols: usize| {
+        Array2::from_shape_vec((len, cols), values)
+            .expect("len × cols values")
+            .into_pyarray(py)
+    };
+    d.set_item("t", PyArray1::from_slice(py, &h.t))?;
+    d.set_item("dof_angles", table(h.phi.clone(), 2 * n))?;
+    d.set_item("dof_rates", table(h.rates.clone(), 2 * n))?;
+    d.set_item("angles", table(signed(&h.phi), n))?;
+    d.set_item("rates", table(signed(&h.rates), n))?;
+    d.set_item("block_rotations", table(h.block_angles.clone(), n))?;
+    let statuses: Vec<i8> = h.statuses.iter().map(|s| s.as_i8()).collect();
+    d.set_item(
+        "statuses",
+        Array2::from_shape_vec((len, n), statuses)
+            .expect("len × n statuses")
+            .into_pyarray(py),
+    )?;
+    Ok(())
+}
+
+/// `summary.json` of `rocking simulate` (cli/src/commands/simulate.rs), field for field; `scene`
+/// is the path of a scene file, None for a scene given as a dict.
+#[derive(Serialize)]
+struct Summary<'a> {
+    scene: Option<String>,
+    title: &'a str,
+    excitation: String,
+    overturned: bool,
+    t_end: f64,
+    impacts: usize,
+    stop_reason: &'static str,
+    stop_interface: Option<usize>,
+    peak_block_rotation: &'a [f64],
+    statuses_end: &'a [Status],
+    /// Events by kind.
+    events: BTreeMap<&'static str, usize>,
+    energy: Energy,
+    dt: f64,
+    wall_time_s: f64,
+}
+
+/// The energy balance and its residual.
+#[derive(Serialize)]
+struct Energy {
+    #[serde(flatten)]
+    balance: EnergyBalance,
+    residual: f64,
+}
+
+fn kind_name(k: EventKind) -> &'static str {
+    match k {
+        EventKind::Opening => "opening",
+        EventKind::Impact => "impact",
+        EventKind::Settled => "settled",
+        EventKind::Overturned => "overturned",
+        EventKind::Sliding => "sliding",
+        EventKind::Tension => "tension",
+    }
+}
+
+fn stop_json(s: &StopReason) -> (&'static str, Option<usize>) {
+    match *s {
+        StopReason::Duration => ("duration", None),
+        StopReason::Overturned { interface } => ("overturned", Some(interface)),
+        StopReason::Fallen { interface } => ("fallen", Some(interface)),
+        StopReason::Sliding { interface } => ("sliding", Some(interface)),
+        StopReason::Tension { interface } => ("tension", Some(interface)),
+        StopReason::TooManyEvents => ("too_many_events", None),
+        StopReason::AtRest => ("at_rest", None),
+        StopReason::CannotTip => ("cannot_tip", None),
+    }
+}
+
+impl<'a> Summary<'a> {
+    fn of(scene: &'a Scene, path: Option<String>, o: &'a Outcome, wall: f64) -> Summary<'a> {
+        let (stop_reason, stop_interface) = stop_json(&o.stop_reason);
+        let mut events = BTreeMap::new();
+        for e in &o.events {
+            *events.entry(kind_name(e.kind)).or_insert(0) += 1;
+        }
+        Summary {
+            scene: path,
+            title: &scene.title,
+            excitation: scene.excitation.describe(),
+            overturned: o.overturned,
+            t_end: o.t_end,
+            impacts: o.impacts,
+            stop_reason,
+            stop_interface,
+            peak_block_rotation: &o.peak_block_rotation,
+            statuses_end: &o.statuses_end,
+            events,
+            energy: Energy {
+                balance: o.energy,
+                residual: o.energy.residual(),
+            },
+            dt: scene.options.stepping.dt,
+            wall_time_s: wall,
+        }
+    }
+}

@@ -1,0 +1,404 @@
+//! Overturning spectra (thesis Chapter 5, SPEC §7) through `rocking::spectra`, with the options
+//! and outputs of `rocking oas`, `rocking t1` and `rocking oc` (cli/src/commands/): `oas` and
+//! `t1` of a record, `oc` of a pulse shape. The sweeps run on rayon with the GIL released and
+//! stop on Ctrl-C between levels (OAS) or pulse durations (OC) (`sweep.rs`): each unit is the
+//! library's own call on that one level or duration, so the results are the library's to the
+//! bit, whatever the number of threads.
+
+use std::path::PathBuf;
+use std::time::Instant;
+
+use pyo3::prelude::*;
+use pyo3::types::PyInt;
+use rocking::driver::{EventLocator, Integrator};
+use rocking::ground::records::{self, PlainFormat, Record as CoreRecord};
+use rocking::model::single_block::EquivalentBlock;
+use rocking::spectra::report::{OasReport, OcReport, SummaryReport, T1Row};
+use rocking::spectra::{
+    self, column_of_size, linear_levels, log_sizes, Oas, OasLevel, OasOptions, Oc, PulseShape,
+    SizeSearch, SpectraError, SweepOptions,
+};
+use rocking::validate;
+
+use crate::arrays::any_vector;
+use crate::errors::value_error;
+use crate::ground::Record;
+use crate::json::to_python;
+use crate::sweep::Runner;
+
+fn spectra_error(e: SpectraError) -> PyErr {
+    value_error(e.to_string())
+}
+
+/// The settings of every simulation of a sweep: `rocking oas/t1/oc`'s `SimulationArgs`.
+#[derive(Clone, Copy)]
+pub struct Simulation {
+    pub impacts: i64,
+    pub dt_factor: f64,
+    pub tail: Option<f64>,
+    pub hermite: bool,
+    pub rk4: bool,
+    pub full_runs: bool,
+}
+
+impl Simulation {
+    /// Writes these settings into `s`, as the CLI does (cli/src/commands/sweep.rs).
+    fn apply(&self, s: &mut SweepOptions) -> PyResult<()> {
+        let impacts = u32::try_from(self.impacts)
+            .ok()
+            .filter(|&n| n >= 1)
+            .ok_or_else(|| value_error(format!("impacts = {}: must be >= 1", self.impacts)))?;
+        validate::positive("dt_factor", self.dt_factor).map_err(value_error)?;
+        s.simulation.physics.model.n_impacts = impacts;
+        s.time_step = s.time_step.scaled(self.dt_factor);
+        if let Some(tail) = self.tail {
+            s.tail = validate::non_negative("tail", tail).map_err(value_error)?;
+        }
+        if self.hermite || self.rk4 {
+            s.simulation.stepping.locator = EventLocator::Hermite;
+        }
+        if self.rk4 {
+            s.simulation.stepping.integrator = Integrator::Rk4;
+        }
+        s.simulation.stopping.stop_when_safe = !self.full_runs;
+        Ok(())
+    }
+}
+
+/// A count (`int`, ≥ 1) or explicit values (an array-like).
+fn count_or_values(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<Result<usize, Vec<f64>>> {
+    if obj.is_instance_of::<PyInt>() {
+        let n: i64 = obj.extract()?;
+        return usize::try_from(n)
+            .ok()
+            .filter(|&n| n >= 1)
+            .map(Ok)
+            .ok_or_else(|| value_error(format!("{name} = {n}: a count must be >= 1")));
+    }
+    Ok(Err(any_vector(obj, name)?))
+}
+
+/// A `Record`, or the path of a record file read as the CLI reads it (`.AT2` in g, plain text in
+/// m/s²). Returns the record and the file (None for a `Record`).
+fn record_of(obj: &Bound<'_, PyAny>) -> PyResult<(CoreRecord, Option<String>)> {
+    if let Ok(r) = obj.cast::<Record>() {
+        return Ok((r.get().inner.clone(), None));
+    }
+    let path: PathBuf = obj.extract().map_err(|_| {
+        value_error("record: expected a rocking.Record or the path of a record file")
+    })?;
+    std::fs::metadata(&path)?;
+    let record = records::read_record(&path, &PlainFormat::default()).map_err(value_error)?;
+    Ok((record, Some(path.display().to_string())))
+}
+
+/// The grid of an OAS (`rocking oas`'s `OasGridArgs`).
+pub struct Grid<'py> {
+    pub slenderness: f64,
+    pub levels: Bound<'py, PyAny>,
+    pub level_max: f64,
+    pub sizes: Bound<'py, PyAny>,
+    pub size_min: f64,
+    pub size_max: f64,
+    pub blocks: i64,
+    pub bisection: bool,
+}
+
+impl Grid<'_> {
+    fn options(&self, simulation: &Simulation) -> PyResult<OasOptions> {
+        let levels = match count_or_values(&self.levels, "levels")? {
+            Ok(n) => linear_levels(1.0, self.level_max, n),
+            Err(v) => v,
+        };
+        let sizes = match count_or_values(&self.sizes, "sizes")? {
+            Ok(n) => log_sizes(self.size_max, self.size_min, n),
+            Err(v) => v,
+        };
+        let n_blocks = usize::try_from(self.blocks)
+            .ok()
+            .filter(|&n| n >= 1)
+            .ok_or_else(|| value_error(format!("blocks = {}: must be >= 1", self.blocks)))?;
+        let mut o = OasOptions {
+            slenderness: self.slenderness,
+            levels,
+            sizes,
+            n_blocks,
+            search: if self.bisection {
+                SizeSearch::Bisection
+            } else {
+                SizeSearch::Scan
+            },
+            ..OasOptions::default()
+        };
+        simulation.apply(&mut o.sweep)?;
+        Ok(o)
+    }
+}
+
+/// The OAS of `record`, one level per unit of work (the library's `oas` on that level).
+fn compute_oas(
+    py: Python<'_>,
+    record: &CoreRecord,
+    o: &OasOptions,
+    runner: &Runner,
+) -> PyResult<Oas> {
+    // Every check of the options and the record, before any thread starts.
+    let no_levels = OasOptions {
+        levels: Vec::new(),
+        ..o.clone()
+    };
+    let mut whole = spectra::oas(record, &no_levels, None).map_err(spectra_error)?;
+    let levels = runner.map(py, o.levels.len(), |k| {
+        let one = OasOptions {
+            levels: vec![o.levels[k]],
+            ..o.clone()
+        };
+        spectra::oas(record, &one, None).map(|r| r.levels[0])
+    })?;
+    whole.levels = levels
+        .into_iter()
+        .collect::<Result<Vec<OasLevel>, _>>()
+        .map_err(spectra_error)?;
+    Ok(whole)
+}
+
+/// The OAS of a record: `(oas --json as a dict, i_cr)`; `i_cr` (Eq. 18) of the slenderness for
+/// the simplified spectra of the plots.
+#[pyfunction]
+#[pyo3(signature = (record, slenderness, levels, level_max, sizes, size_min, size_max, blocks, bisection, impacts, dt_factor, tail, hermite, rk4, full_runs, threads, progress))]
+#[allow(clippy::too_many_arguments)]
+pub fn _oas<'py>(
+    py: Python<'py>,
+    record: &Bound<'py, PyAny>,
+    slenderness: f64,
+    levels: Bound<'py, PyAny>,
+    level_max: f64,
+    sizes: Bound<'py, PyAny>,
+    size_min: f64,
+    size_max: f64,
+    blocks: i64,
+    bisection: bool,
+    impacts: i64,
+    dt_factor: f64,
+    tail: Option<f64>,
+    hermite: bool,
+    rk4: bool,
+    full_runs: bool,
+    threads: Option<usize>,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<(Bound<'py, PyAny>, f64)> {
+    let (record, _) = record_of(record)?;
+    let simulation = Simulation {
+        impacts,
+        dt_factor,
+        tail,
+        hermite,
+        rk4,
+        full_runs,
+    };
+    let grid = Grid {
+        slenderness,
+        levels,
+        level_max,
+        sizes,
+        size_min,
+        size_max,
+        blocks,
+        bisection,
+    };
+    let o = grid.options(&simulation)?;
+    let runner = Runner { threads, progress };
+    let t0 = Instant::now();
+    let result = compute_oas(py, &record, &o, &runner)?;
+    let seconds = t0.elapsed().as_secs_f64();
+    Ok((
+        to_python(py, &OasReport::of(&result, seconds))?,
+        result.i_cr(),
+    ))
+}
+
+/// `t1 --json`'s row of each record (a `Record` or a path), in order.
+#[pyfunction]
+#[pyo3(signature = (records, slenderness, levels, level_max, sizes, size_min, size_max, blocks, bisection, impacts, dt_factor, tail, hermite, rk4, full_runs, threads, progress))]
+#[allow(clippy::too_many_arguments)]
+pub fn _t1<'py>(
+    py: Python<'py>,
+    records: Vec<Bound<'py, PyAny>>,
+    slenderness: f64,
+    levels: Bound<'py, PyAny>,
+    level_max: f64,
+    sizes: Bound<'py, PyAny>,
+    size_min: f64,
+    size_max: f64,
+    blocks: i64,
+    bisection: bool,
+    impacts: i64,
+    dt_factor: f64,
+    tail: Option<f64>,
+    hermite: bool,
+    rk4: bool,
+    full_runs: bool,
+    threads: Option<usize>,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let simulation = Simulation {
+        impacts,
+        dt_factor,
+        tail,
+        hermite,
+        rk4,
+        full_runs,
+    };
+    let grid = Grid {
+        slenderness,
+        levels,
+        level_max,
+        sizes,
+        size_min,
+        size_max,
+        blocks,
+        bisection,
+    };
+    let o = grid.options(&simulation)?;
+    let runner = Runner { threads, progress };
+    let mut rows = Vec::with_capacity(records.len());
+    for r in &records {
+        let (record, file) = record_of(r)?;
+        let t0 = Instant::now();
+        let result = compute_oas(py, &record, &o, &runner)?;
+        rows.push(T1Row {
+            summary: SummaryReport::of(&result, t0.elapsed().as_secs_f64()),
+            file,
+            slenderness: o.slenderness,
+            blocks: o.n_blocks,
+            dt_factor,
+            search: o.search,
+            t_p: spectra::replacement_sine(&record).map(|s| s.t_p),
+            procedure: None,
+        });
+    }
+    to_python(py, &rows)
+}
+
+/// The pulse shapes of `rocking oc --shape` (hyphens or underscores).
+fn shape_of(name: &str) -> PyResult<PulseShape> {
+    Ok(match name.replace('_', "-").as_str() {
+        "half-sine" => PulseShape::half_sine(),
+        "full-sine" => PulseShape::full_sine(),
+        "three-half-sines" => PulseShape::three_half_sines(),
+        "rectangular" => PulseShape::Rectangular,
+        "triangular" => PulseShape::Triangular,
+        "ricker" => PulseShape::Ricker,
+        _ => {
+            return Err(value_error(format!(
+                "shape = {name:?}: expected half-sine, full-sine, three-half-sines, \
+                 rectangular, triangular or ricker"
+            )))
+        }
+    })
+}
+
+/// The overturning curve of a pulse shape (`rocking oc`): `oc --json` as a dict.
+#[pyfunction]
+#[pyo3(signature = (shape, blocks, slenderness, size, ptp, ptp_min, ptp_max, levels, level_max, impacts, dt_factor, tail, hermite, rk4, full_runs, threads, progress))]
+#[allow(clippy::too_many_arguments)]
+pub fn _oc<'py>(
+    py: Python<'py>,
+    shape: &str,
+    blocks: i64,
+    slenderness: f64,
+    size: f64,
+    ptp: Bound<'py, PyAny>,
+    ptp_min: f64,
+    ptp_max: f64,
+    levels: Bound<'py, PyAny>,
+    level_max: f64,
+    impacts: i64,
+    dt_factor: f64,
+    tail: Option<f64>,
+    hermite: bool,
+    rk4: bool,
+    full_runs: bool,
+    threads: Option<usize>,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let shape = shape_of(shape)?;
+    let n_blocks = usize::try_from(blocks)
+        .ok()
+        .filter(|&n| n >= 1)
+        .ok_or_else(|| value_error(format!("blocks = {blocks}: must be >= 1")))?;
+    let column = column_of_size(size, slenderness, n_blocks).map_err(spectra_error)?;
+    let mut sweep = SweepOptions::default();
+    Simulation {
+        impacts,
+        dt_factor,
+        tail,
+        hermite,
+        rk4,
+        full_runs,
+    }
+    .apply(&mut sweep)?;
+    let block = EquivalentBlock::of_column(&column);
+    let g = sweep.simulation.physics.gravity;
+    let (mono_p, mono_a_p_min) = (block.frequency_parameter(g), block.a_p_min(g));
+    // As the CLI: p t_p log-spaced ascending, levels linear from 1.
+    let ptp: Vec<f64> = match count_or_values(&ptp, "ptp")? {
+        Ok(n) => log_sizes(ptp_max, ptp_min, n).into_iter().rev().collect(),
+        Err(v) => v,
+    };
+    let t_p: Vec<f64> = ptp.iter().map(|x| x / mono_p).collect();
+    let levels = match count_or_values(&levels, "levels")? {
+        Ok(n) => linear_levels(1.0, level_max, n),
+        Err(v) => v,
+    };
+    let a_p: Vec<f64> = levels.iter().map(|l| l * mono_a_p_min).collect();
+    // Every check before any thread starts; then one pulse duration per unit of work.
+    let mut res = spectra::overturning_curve(&column, shape, &[], &a_p, &sweep, None)
+        .map_err(spectra_error)?;
+    spectra::overturning_curve(&column, shape, &t_p, &[], &sweep, None).map_err(spectra_error)?;
+    let runner = Runner { threads, progress };
+    let rows = runner.map(py, t_p.len(), |i| {
+        spectra::overturning_curve(&column, shape, &t_p[i..=i], &a_p, &sweep, None)
+            .map(|oc: Oc| oc.overturned)
+    })?;
+    res.t_p = t_p;
+    for row in rows {
+        res.overturned.extend(row.map_err(spectra_error)?);
+    }
+    to_python(
+        py,
+        &OcReport::of(&res, &a_p, n_blocks, mono_p, mono_a_p_min),
+    )
+}
+
+/// The simplified OAS (Eq. 21), `max{i_cr / (t_1 p), 1}`, and the improved one with the
+/// inclined line (Eq. 30), `max{1/(t_1 p), 1/(t_1'(p − 1/β)), 1}`, at each `p`: the curves of
+/// the plots. Returns `(eq21, eq30)`; `eq30` is None without `t1_prime` and `beta`.
+#[pyfunction]
+#[pyo3(signature = (p, t1, i_cr, t1_prime = None, beta = None))]
+pub fn _simplified_oas<'py>(
+    py: Python<'py>,
+    p: &Bound<'py, PyAny>,
+    t1: f64,
+    i_cr: f64,
+    t1_prime: Option<f64>,
+    beta: Option<f64>,
+) -> PyResult<(Bound<'py, PyAny>, Option<Bound<'py, PyAny>>)> {
+    let p = any_vector(p, "p")?;
+    let eq21: Vec<f64> = p
+        .iter()
+        .map(|&x| rocking::design::simplified_oas(x, t1, i_cr))
+        .collect();
+    let eq30 = match (t1_prime, beta) {
+        (Some(tp), Some(b)) => Some(
+            p.iter()
+                .map(|&x| rocking::design::improved_oas_eq30(x, t1, tp, b))
+                .collect::<Vec<f64>>(),
+        ),
+        _ => None,
+    };
+    Ok((
+        crate::arrays::new_vector(py, eq21).into_any(),
+        eq30.map(|v| crate::arrays::new_vector(py, v).into_any()),
+    ))
+}

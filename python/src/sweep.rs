@@ -1,0 +1,119 @@
+//! Long sweeps from Python: the units of work (the levels of an OAS, the pulse durations of an
+//! OC) run in parallel on rayon with the GIL released, while the calling thread waits for them
+//! and, every [`POLL`], takes the GIL back briefly to check for signals (Ctrl-C raises
+//! `KeyboardInterrupt` there) and to report progress. On an interrupt no new unit starts, the
+//! running ones finish, and the exception is raised.
+//!
+//! Every unit is computed independently of the others and the results are collected in their
+//! order, so the answer does not depend on the number of threads (the library's determinism).
+
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::mpsc;
+use std::time::Duration;
+
+use pyo3::prelude::*;
+use rayon::prelude::*;
+
+use crate::errors::value_error;
+
+/// How often the waiting thread checks for signals and reports progress.
+const POLL: Duration = Duration::from_millis(50);
+
+/// How a sweep runs: on how many threads, and whom it tells how far it got.
+pub struct Runner {
+    /// Threads (`None`: rayon's global pool, every core).
+    pub threads: Option<usize>,
+    /// A Python callable `progress(done, total)`, called from the calling thread as units finish.
+    pub progress: Option<Py<PyAny>>,
+}
+
+impl Runner {
+    /// `(0..n).map(work)` in parallel, interruptible between units; the results in order.
+    pub fn map<T, F>(&self, py: Python<'_>, n: usize, work: F) -> PyResult<Vec<T>>
+    where
+        T: Send,
+        F: Fn(usize) -> T + Sync,
+    {
+        let pool = match self.threads {
+            Some(0) => return Err(value_error("threads = 0: must be at least 1")),
+            Some(t) => Some(
+                rayon::ThreadPoolBuilder::new()
+                    .num_threads(t)
+                    .build()
+                    .map_err(|e| value_error(format!("threads = {t}: {e}")))?,
+            ),
+            None => None,
+        };
+        let cancel = AtomicBool::new(false);
+        let done = AtomicUsize::new(0);
+        let unit = |i: usize| {
+            if cancel.load(Ordering::Relaxed) {
+                return None;
+            }
+            let r = work(i);
+            done.fetch_add(1, Ordering::Relaxed);
+            Some(r)
+        };
+        let all = || -> Vec<Option<T>> { (0..n).into_par_iter().map(unit).collect() };
+        let (results, stopped) = py.detach(|| {
+            std::thread::scope(|s| {
+                let (tx, rx) = mpsc::channel::<()>();
+                let worker = s.spawn(move || {
+                    let r = match &pool {
+                        Some(p) => p.install(all),
+                        None => all(),
+                    };
+                    // The receiver lives until the join below.
+                    let _ = tx.send(());
+                    r
+                });
+                let mut stopped: Option<PyErr> = None;
+                let mut reported = usize::MAX;
+                loop {
+                    let finished = rx.recv_timeout(POLL).is_ok();
+                    if stopped.is_none() {
+                        stopped = Python::attach(|py| self.poll(py, &done, n, &mut reported)).err();
+                        if stopped.is_some() {
+                            cancel.store(true, Ordering::Relaxed);
+                        }
+                    }
+                    if finished {
+                        break;
+                    }
+                }
+                // A panic in the library is a bug: pass it on as a panic (pyo3 turns it into
+                // `PanicException`).
+                let results = worker
+                    .join()
+                    .unwrap_or_else(|p| std::panic::resume_unwind(p));
+                (results, stopped)
+            })
+        });
+        if let Some(e) = stopped {
+            return Err(e);
+        }
+        Ok(results
+            .into_iter()
+            .map(|r| r.expect("every unit ran without an interrupt"))
+            .collect())
+    }
+
+    /// Signals (Ctrl-C), then the progress callback when something new finished.
+    fn poll(
+        &self,
+        py: Python<'_>,
+        done: &AtomicUsize,
+        total: usize,
+        reported: &mut usize,
+    ) -> PyResult<()> {
+        py.check_signals()?;
+        if let Some(cb) = &self.progress {
+            let d = done.load(Ordering::Relaxed);
+            if d != *reported {
+                *reported = d;
+                cb.call1(py, (d, total))?;
+            }
+        }
+        Ok(())
+    }
+}

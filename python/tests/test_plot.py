@@ -1,0 +1,63 @@
+"""rocking.plot: matplotlib stays optional (importing rocking never loads it); where it is
+installed (`pip install './python[plot]'`), each plot draws what its result holds."""
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+import rocking
+
+
+def test_import_rocking_without_matplotlib():
+    code = "import sys, rocking, rocking.plot; print('matplotlib' in sys.modules)"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "False"
+
+
+@pytest.fixture(scope="module")
+def plt():
+    mpl = pytest.importorskip("matplotlib", reason="matplotlib not installed (the [plot] extra)")
+    mpl.use("Agg")
+    import matplotlib.pyplot as plt
+
+    yield plt
+    plt.close("all")
+
+
+def test_simulation_plot(plt, root):
+    r = rocking.simulate(root / "examples/scenes/two_block_free_rocking.json")
+    ax = r.plot()
+    lines = ax.get_lines()
+    np.testing.assert_array_equal(lines[0].get_xdata(), r.t)
+    np.testing.assert_array_equal(lines[1].get_ydata(), r.block_rotations[:, 1])
+    assert len(lines) == 2 + len(r.events)  # a line per block and per event
+    assert ax.get_title() == r.title
+
+
+def test_oas_plots(plt, root):
+    o = rocking.oas(root / "examples/records/synthetic.AT2", levels=16, sizes=40)
+    for against, x in [("p", o.p), ("f", o.f), ("size", o.size)]:
+        _, ax = plt.subplots()
+        o.plot(against=against, ax=ax)
+        points = ax.get_lines()[0]
+        np.testing.assert_array_equal(points.get_xdata(), x[o.unsafe])
+        np.testing.assert_array_equal(points.get_ydata(), o.levels[o.unsafe])
+        assert len(ax.get_lines()) == 3  # Eq. 21 (20) and Eq. 30 (28) with the points
+    # Eq. 21 passes through the most vulnerable point (the definition of t1, Eq. 20)
+    _, ax = plt.subplots()
+    o.plot(against="p", ax=ax)
+    eq21 = ax.get_lines()[1]
+    k = int(np.nanargmin(o.f))
+    assert np.interp(o.p[k], eq21.get_xdata(), eq21.get_ydata()) == pytest.approx(o.levels[k], rel=1e-2)
+    with pytest.raises(ValueError, match="against"):
+        o.plot(against="q")
+
+
+def test_oc_plot(plt):
+    o = rocking.oc(ptp=8, levels=6)
+    ax = o.plot()
+    points, envelope = ax.get_lines()
+    assert len(points.get_xdata()) == int(o.unsafe.sum())
+    np.testing.assert_array_equal(envelope.get_ydata(), o.envelope)
+    assert ax.get_xscale() == "log"

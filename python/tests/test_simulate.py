@@ -1,0 +1,190 @@
+"""rocking.simulate against the CLI: on every bundled scene the events equal events.jsonl, the
+summary equals summary.json (wall time aside) and the history equals history.csv to the bit
+(tests/golden/scenes holds the CLI's outputs, which `cargo test --test golden` keeps). Then the
+dict form of a scene, Pulse and Record objects as excitations, the output options, and the
+errors, which name the field."""
+import hashlib
+import json
+import os
+import re
+import subprocess
+
+import numpy as np
+import pytest
+
+import rocking
+
+SCENES = ["two_block_free_rocking", "single_block_half_sine", "three_block_sine_pulse", "column_synthetic_record"]
+
+
+def golden_events(root, name):
+    return [json.loads(line) for line in (root / "tests/golden/scenes" / f"{name}.events.jsonl").read_text().splitlines()]
+
+
+def golden_summary(root, name):
+    # The capture drops the wall-time line, which leaves a trailing comma.
+    text = (root / "tests/golden/scenes" / f"{name}.summary.json").read_text()
+    return json.loads(re.sub(r",\s*}\s*$", "}", text))
+
+
+def rust_display(x):
+    """Rust's `{}` of an f64 (what history.csv holds): the shortest digits that read back,
+    positional, "0" / "-0" for zeros, no trailing ".0"."""
+    if x == 0:
+        return "-0" if np.signbit(x) else "0"
+    return np.format_float_positional(x, unique=True, trim="-")
+
+
+def history_csv(r):
+    n = r.angles.shape[1]
+    head = ["t"] + [f"{c}_{k}" for c in ("angle", "rate", "block_rotation", "status") for k in range(n)]
+    lines = [",".join(head)]
+    for i in range(len(r.t)):
+        row = [rust_display(r.t[i])]
+        row += [rust_display(v) for a in (r.angles, r.rates, r.block_rotations) for v in a[i]]
+        row += [str(int(s)) for s in r.statuses[i]]
+        lines.append(",".join(row))
+    return "\n".join(lines) + "\n"
+
+
+@pytest.mark.parametrize("name", SCENES)
+def test_bundled_scene_as_the_cli(root, name, monkeypatch):
+    monkeypatch.chdir(root)  # the CLI's `scene` field is the path as given
+    r = rocking.simulate(f"examples/scenes/{name}.json")
+    assert r.events == golden_events(root, name)
+    summary = dict(r.summary)
+    assert summary.pop("wall_time_s") >= 0.0
+    assert summary == golden_summary(root, name)
+    digest = hashlib.sha256(history_csv(r).encode()).hexdigest()
+    assert digest == (root / "tests/golden/scenes" / f"{name}.history.sha256").read_text().strip()
+
+
+def test_history_arrays(root):
+    r = rocking.simulate(root / "examples/scenes/two_block_free_rocking.json")
+    n, samples = 2, len(r.t)
+    assert r.t.dtype == np.float64 and r.t.shape == (samples,) and samples > 1000
+    for a in (r.angles, r.rates, r.block_rotations):
+        assert a.shape == (samples, n) and a.dtype == np.float64
+    assert r.statuses.shape == (samples, n) and r.statuses.dtype == np.int8
+    assert r.dof_angles.shape == r.dof_rates.shape == (samples, 2 * n)
+    # The signed interface angle is the sum of the DOF pair; a closed interface has none.
+    np.testing.assert_array_equal(r.angles, r.dof_angles[:, :n] + r.dof_angles[:, n:])
+    assert np.all(r.angles[r.statuses == 0] == 0.0)
+    assert set(np.unique(r.statuses)) <= {-1, 0, 1}
+    assert r.block_rotations[0, 1] == pytest.approx(0.153)
+    assert np.all(np.diff(r.t) > 0)
+    assert r.t_end == 1.5 and not r.overturned and r.stop_reason == "duration"
+    assert len(r.events_of("impact")) == r.summary["impacts"] == 23
+
+
+def test_a_dict_is_the_same_scene(root):
+    path = root / "examples/scenes/column_synthetic_record.json"
+    from_file = rocking.simulate(path)
+    scene = json.loads(path.read_text())
+    from_dict = rocking.simulate(scene, base=path.parent)  # the record path is relative to it
+    assert from_dict.events == from_file.events
+    np.testing.assert_array_equal(from_dict.block_rotations, from_file.block_rotations)
+    assert from_dict.summary["scene"] is None and from_file.summary["scene"] == str(path)
+    # numpy values in a dict are numbers
+    scene["initial_angles"] = np.zeros(3)
+    scene["dt"] = np.float64(scene["dt"])
+    assert rocking.simulate(scene, base=path.parent).events == from_file.events
+
+
+def test_record_paths_of_a_dict_start_at_the_cwd(root, monkeypatch):
+    scene = json.loads((root / "examples/scenes/column_synthetic_record.json").read_text())
+    scene["excitation"]["path"] = "examples/records/synthetic.AT2"
+    monkeypatch.chdir(root)
+    assert rocking.simulate(scene).events == golden_events(root, "column_synthetic_record")
+    monkeypatch.chdir(root / "python")
+    with pytest.raises(rocking.RockingError, match="excitation.path"):
+        rocking.simulate(scene)
+
+
+def test_pulse_and_record_objects_as_excitations(root):
+    scene = json.loads((root / "examples/scenes/three_block_sine_pulse.json").read_text())
+    as_pulse = dict(scene, excitation=rocking.full_sine(-2.467, 0.6))
+    assert rocking.simulate(as_pulse).events == golden_events(root, "three_block_sine_pulse")
+    path = root / "examples/scenes/column_synthetic_record.json"
+    scene = json.loads(path.read_text())
+    record = rocking.read_record(root / "examples/records/synthetic.AT2").scaled_to_pga(4.0)
+    r = rocking.simulate(dict(scene, excitation=record))
+    assert r.events == golden_events(root, "column_synthetic_record")
+    assert r.summary["excitation"] == golden_summary(root, "column_synthetic_record")["excitation"]
+
+
+def test_output_options(root):
+    scene = json.loads((root / "examples/scenes/two_block_free_rocking.json").read_text())
+    full = rocking.simulate(scene)
+    every = rocking.simulate(dict(scene, output={"every": 10}))
+    assert every.events == full.events
+    # every tenth step kept (and the last one)
+    assert np.isin(every.t, full.t).all() and len(every.t) == len(full.t[::10]) + 1
+    assert every.t[-1] == full.t[-1] == 1.5
+    none = rocking.simulate(dict(scene, output={"history": False}))
+    assert none.events == full.events
+    assert none.t.shape == (0,) and none.angles.shape == (0, 2) and none.statuses.shape == (0, 2)
+
+
+def test_against_the_cli_binary_on_other_settings(root, tmp_path):
+    """A scene with non-default settings (DOP853, Hermite location, the exact velocity terms):
+    the same events as the CLI binary, run now."""
+    cli = os.environ.get("ROCKING_CLI") or str(root / "target" / "release" / "rocking")
+    if not os.path.exists(cli):
+        pytest.skip("no rocking CLI (cargo build --release -p rocking-cli) and ROCKING_CLI unset")
+    scene = json.loads((root / "examples/scenes/two_block_free_rocking.json").read_text())
+    scene.update(integrator="dop853", locator="hermite", exact_velocity_terms=True, dt=0.0005, duration=0.6)
+    path = tmp_path / "scene.json"
+    path.write_text(json.dumps(scene))
+    subprocess.run([cli, "simulate", str(path), "--out", str(tmp_path)], check=True, capture_output=True)
+    cli_events = [json.loads(line) for line in (tmp_path / "events.jsonl").read_text().splitlines()]
+    assert len(cli_events) > 5
+    assert rocking.simulate(scene).events == cli_events
+
+
+@pytest.mark.parametrize(
+    "change, field",
+    [
+        ({"dt": -1}, "dt"),
+        ({"colour": 1}, "unknown field `colour`"),
+        ({"blocks": [{"width": 0.1, "height": 0.3, "mass": 0}]}, r"blocks\[0\].mass"),
+        ({"excitation": {"type": "square"}}, "unknown variant `square`"),
+        ({"excitation": {"type": "half_sine", "amplitude": 3, "duration": 0}}, "excitation.duration"),
+        ({"impacts": 0}, "impacts"),
+        ({"integrator": "euler"}, "integrator"),
+        ({"initial_angles": [0.1]}, "initial_angles"),
+        ({"duration": float("nan")}, "duration = nan"),
+        ({"initial_angles": [0.0, float("inf")]}, r"initial_angles\[1\] = inf"),
+    ],
+)
+def test_errors_name_the_field(root, change, field):
+    scene = json.loads((root / "examples/scenes/two_block_free_rocking.json").read_text())
+    scene.update(change)
+    with pytest.raises(rocking.RockingError, match=field):
+        rocking.simulate(scene)
+
+
+def test_missing_fields_files_and_types(root, tmp_path):
+    with pytest.raises(rocking.RockingError, match="missing field `duration`"):
+        rocking.simulate({"blocks": [{"width": 0.2, "height": 1, "mass": 1}], "excitation": {"type": "none"},
+                          "dt": 0.001})
+    with pytest.raises(FileNotFoundError):
+        rocking.simulate(tmp_path / "nowhere.json")
+    bad = tmp_path / "bad.json"
+    bad.write_text("{\"blocks\": [")
+    with pytest.raises(rocking.RockingError, match="bad.json"):
+        rocking.simulate(bad)
+    with pytest.raises(TypeError, match="scene"):
+        rocking.simulate(42)
+    with pytest.raises(TypeError, match="scene"):
+        rocking.simulate({"blocks": object()})
+
+
+def test_a_contact_scheme_scene_is_refused_not_run_rigidly(root):
+    """A scene whose joints slide or fly runs the contact scheme in the CLI; rocking.simulate does
+    not support it yet and must say so rather than run the rigid driver."""
+    path = root / "examples/scenes/drums_sliding_column.json"
+    if not path.exists():
+        pytest.skip("no contact-scheme scene in this checkout")
+    with pytest.raises(rocking.RockingError, match="contact scheme"):
+        rocking.simulate(path)

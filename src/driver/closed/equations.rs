@@ -1,0 +1,171 @@
+//! The equations of motion of an open mechanism of a loop (SPEC §9): the open DOFs `F` of the cut
+//! chain with the closure kept at acceleration level,
+//! `[M_FF G_Fᵀ; G_F 0] [a; μ] = [q_F + f_F; −Ġ v]` (`f`: the exact velocity terms), geometry
+//! recomputed at every evaluation; and the classical RK4 step on the open DOFs.
+
+use crate::chain::Chain;
+
+/// The constrained equations of a loop's open DOFs, with scratch for one evaluation.
+#[derive(Clone, Debug)]
+pub struct LoopEquations<'a> {
+    chain: &'a Chain,
+    gravity: f64,
+    phi: Vec<f64>,
+    rates: Vec<f64>,
+    kkt: Vec<f64>,
+    rhs: Vec<f64>,
+}
+
+impl<'a> LoopEquations<'a> {
+    /// The equations of `chain` under `gravity` (m/s², positive).
+    pub fn new(chain: &'a Chain, gravity: f64) -> LoopEquations<'a> {
+        let m = chain.n_dofs();
+        LoopEquations {
+            chain,
+            gravity,
+            phi: vec![0.0; m],
+            rates: vec![0.0; m],
+            kkt: Vec::new(),
+            rhs: Vec::new(),
+        }
+    }
+
+    /// The chain.
+    pub fn chain(&self) -> &'a Chain {
+        self.chain
+    }
+
+    /// Accelerations `out` of the open DOFs `open` (reduced angles `x` and rates `v`, all of
+    /// length `open.len()`) under the ground acceleration `ag` (m/s², +x). Returns `false` when
+    /// the KKT system is singular (no motion compatible with the closure, or `M` not positive
+    /// definite on the null space of `G_F`).
+    pub fn accelerations(
+        &mut self,
+        open: &[usize],
+        ag: f64,
+        x: &[f64],
+        v: &[f64],
+        out: &mut [f64],
+    ) -> bool {
+        let m = self.chain.n_dofs();
+        self.phi.iter_mut().for_each(|p| *p = 0.0);
+        self.rates.iter_mut().for_each(|p| *p = 0.0);
+        for (i, &d) in open.iter().enumerate() {
+            self.phi[d] = x[i];
+            self.rates[d] = v[i];
+        }
+        let pose = self.chain.pose(&self.phi);
+        let mass = self.chain.mass_matrix(&pose);
+        let q = self.chain.load_vector(&pose, ag, self.gravity);
+        let f = self.chain.velocity_load(&pose, &self.phi, &self.rates);
+        let g = self.chain.closure_matrix(&pose);
+        let gdot = self.chain.closure_rate(&pose, &self.rates);
+        let nf = open.len();
+        let k = nf + 3;
+        self.kkt.clear();
+        self.kkt.resize(k * k, 0.0);
+        self.rhs.clear();
+        self.rhs.resize(k, 0.0);
+        let (a, b) = (&mut self.kkt, &mut self.rhs);
+        for (i, &di) in open.iter().enumerate() {
+            for (j, &dj) in open.iter().enumerate() {
+                a[i * k + j] = mass[di * m + dj];
+            }
+            for r in 0..3 {
+                a[i * k + nf + r] = g[r * m + di];
+                a[(nf + r) * k + i] = g[r * m + di];
+            }
+            b[i] = q[di] + f[di];
+        }
+        for r in 0..3 {
+            b[nf + r] = -gdot[r];
+        }
+        if !solve_in_place(a, b) {
+            return false;
+        }
+        out[..nf].copy_from_slice(&b[..nf]);
+        true
+    }
+
+    /// One classical RK4 step of length `dt` from `(x, v)` at time `t` under `ag(t)`: the state
+    /// at `t + dt` in `(x1, v1)`. Returns `false` if an evaluation failed
+    /// ([`LoopEquations::accelerations`]).
+    #[allow(clippy::too_many_arguments)]
+    pub fn rk4_step(
+        &mut self,
+        open: &[usize],
+        ag: &dyn Fn(f64) -> f64,
+        t: f64,
+        dt: f64,
+        x: &[f64],
+        v: &[f64],
+        x1: &mut [f64],
+        v1: &mut [f64],
+    ) -> bool {
+        let n = open.len();
+        let axpy = |a: &[f64], b: &[f64], h: f64| -> Vec<f64> {
+            a.iter().zip(b).map(|(a, b)| a + h * b).collect()
+        };
+        let mut k1a = vec![0.0; n];
+        let mut k2a = vec![0.0; n];
+        let mut k3a = vec![0.0; n];
+        let mut k4a = vec![0.0; n];
+        let k1x = v.to_vec();
+        let ok1 = self.accelerations(open, ag(t), x, v, &mut k1a);
+        let k2x = axpy(v, &k1a, dt / 2.0);
+        let ok2 = self.accelerations(
+            open,
+            ag(t + dt / 2.0),
+            &axpy(x, &k1x, dt / 2.0),
+            &k2x,
+            &mut k2a,
+        );
+        let k3x = axpy(v, &k2a, dt / 2.0);
+        let ok3 = self.accelerations(
+            open,
+            ag(t + dt / 2.0),
+            &axpy(x, &k2x, dt / 2.0),
+            &k3x,
+            &mut k3a,
+        );
+        let k4x = axpy(v, &k3a, dt);
+        let ok4 = self.accelerations(open, ag(t + dt), &axpy(x, &k3x, dt), &k4x, &mut k4a);
+        for i in 0..n {
+            x1[i] = x[i] + dt / 6.0 * (k1x[i] + 2.0 * k2x[i] + 2.0 * k3x[i] + k4x[i]);
+            v1[i] = v[i] + dt / 6.0 * (k1a[i] + 2.0 * k2a[i] + 2.0 * k3a[i] + k4a[i]);
+        }
+        ok1 && ok2 && ok3 && ok4
+    }
+}
+
+/// Solves the dense `a x = b` in place (`b` becomes `x`) by Gaussian elimination with partial
+/// pivoting; `false` if a pivot is zero or the result is not finite.
+fn solve_in_place(a: &mut [f64], b: &mut [f64]) -> bool {
+    let n = b.len();
+    for col in 0..n {
+        let Some(piv) =
+            (col..n).max_by(|&i, &j| a[i * n + col].abs().total_cmp(&a[j * n + col].abs()))
+        else {
+            return false;
+        };
+        if a[piv * n + col] == 0.0 {
+            return false;
+        }
+        for k in 0..n {
+            a.swap(col * n + k, piv * n + k);
+        }
+        b.swap(col, piv);
+        for r in col + 1..n {
+            let f = a[r * n + col] / a[col * n + col];
+            for k in col..n {
+                a[r * n + k] -= f * a[col * n + k];
+            }
+            b[r] -= f * b[col];
+        }
+    }
+    for r in (0..n).rev() {
+        let s: f64 = (r + 1..n).map(|k| a[r * n + k] * b[k]).sum();
+        b[r] = (b[r] - s) / a[r * n + r];
+    }
+    b.iter().all(|x| x.is_finite())
+}
