@@ -83,7 +83,7 @@ fn spectra_bench_compares_with_full_runs() {
 }
 
 /// `rocking bench spectra --dt-factor 2` on the bundled record: t₁ at both steps and the cost
-/// ratio; t₁ at the default step is the one `rocking t1` prints (golden: 0.2278 s).
+/// ratio; t₁ at the default step is the one `rocking t1` prints (golden: 0.2276 s).
 #[test]
 fn spectra_bench_prices_a_scaled_step() {
     let (ok, stdout, err) = rocking(&["bench", "spectra", "--dt-factor", "2"]);
@@ -95,7 +95,7 @@ fn spectra_bench_prices_a_scaled_step() {
         .nth(1)
         .expect("a row of the scaled step");
     let cells: Vec<&str> = row.split('|').map(str::trim).collect();
-    assert_eq!(cells[2], "0.2278", "{row}");
+    assert_eq!(cells[2], "0.2276", "{row}");
     let t1: f64 = cells[3].parse().unwrap();
     assert!(t1 > 0.05 && t1 < 2.0, "{row}");
     let ratio: f64 = cells[7].parse().unwrap();
