@@ -27,8 +27,11 @@
 //! columns of a size grid; `overturning_curve.rs` the OC of pulses; `oas.rs` the OAS of a record;
 //! `transformed.rs` its transformed form, `f_min`, `t_1`, the inclined fit and the conservative
 //! checks; `replacement_sine.rs` the replacement sine duration `t_p` of a record (Eq. 25);
-//! `statistics.rs` the fractile and the correlation of a record suite.
+//! `statistics.rs` the fractile and the correlation of a record suite; `band.rs` `t_1` with its
+//! band over equivalent perturbations (half the step, grids shifted by half a cell, the other
+//! event locator).
 
+mod band;
 mod oas;
 mod overturning_curve;
 mod point;
@@ -40,6 +43,7 @@ mod sweep;
 mod time_step;
 mod transformed;
 
+pub use band::{t1_band, Perturbation, T1Band};
 pub use oas::{
     linear_levels, log_sizes, oas, record_overturns, Oas, OasLevel, OasOptions, OasPoint,
     SizeSearch,
