@@ -148,12 +148,20 @@ def _numbers(**args):
             raise TypeError(f"{name}: expected {'an integer' if integral else 'a number'}, got {type(v).__name__}")
 
 
+def _simulation(impacts, dt_factor, tail, hermite, rk4, full_runs):
+    """The settings of every simulation (the extension's ``Simulation``)."""
+    return dict(impacts=impacts, dt_factor=dt_factor, tail=tail, hermite=bool(hermite), rk4=bool(rk4),
+                full_runs=bool(full_runs))
+
+
 def _grid_args(slenderness, levels, level_max, sizes, size_min, size_max, blocks, bisection, impacts, dt_factor,
                tail, hermite, rk4, full_runs, threads, progress):
+    """``grid, simulation, threads, progress`` of the extension's ``_oas`` and ``_t1``."""
     _numbers(slenderness=slenderness, level_max=level_max, size_min=size_min, size_max=size_max, blocks=blocks,
              impacts=impacts, dt_factor=dt_factor, tail=tail, threads=threads)
-    return (slenderness, _count(levels), level_max, _count(sizes), size_min, size_max, blocks, bool(bisection),
-            impacts, dt_factor, tail, bool(hermite), bool(rk4), bool(full_runs), threads, progress)
+    grid = dict(slenderness=slenderness, levels=_count(levels), level_max=level_max, sizes=_count(sizes),
+                size_min=size_min, size_max=size_max, blocks=blocks, bisection=bool(bisection))
+    return grid, _simulation(impacts, dt_factor, tail, hermite, rk4, full_runs), threads, progress
 
 
 def oas(record, *, slenderness=12.0, levels=80, level_max=10.0, sizes=120, size_min=0.1, size_max=1000.0,
@@ -220,7 +228,7 @@ def oc(shape="half-sine", *, blocks=1, slenderness=12.0, size=1.0, ptp=40, ptp_m
     _numbers(blocks=blocks, slenderness=slenderness, size=size, ptp_min=ptp_min, ptp_max=ptp_max, level_max=level_max,
              impacts=impacts, dt_factor=dt_factor, tail=tail, threads=threads)
     return Oc(_rocking._oc(shape, blocks, slenderness, size, _count(ptp), ptp_min, ptp_max, _count(levels), level_max,
-                           impacts, dt_factor, tail, bool(hermite), bool(rk4), bool(full_runs), threads, progress))
+                           _simulation(impacts, dt_factor, tail, hermite, rk4, full_runs), threads, progress))
 
 
 oc.__doc__ = oc.__doc__.replace("{simulation}", _SIMULATION_DOC.strip())

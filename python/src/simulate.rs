@@ -3,7 +3,6 @@
 //! history (`history.csv`'s columns as numpy arrays), the events (`events.jsonl`'s objects) and
 //! the summary (`summary.json`'s fields).
 
-use std::collections::BTreeMap;
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -11,12 +10,10 @@ use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use rocking::driver::{self, EnergyBalance, EventKind, History, Outcome, StopReason};
+use rocking::driver::{self, History};
 use rocking::ground::excitation::Excitation;
 use rocking::ground::FnMotion;
-use rocking::scene::{self, Scene, SceneSpec};
-use rocking::Status;
-use serde::Serialize;
+use rocking::scene::{self, SceneSpec, Summary};
 
 use crate::errors::value_error;
 use crate::ground::Record;
@@ -119,86 +116,4 @@ fn history_arrays(d: &Bound<'_, PyDict>, h: &History) -> PyResult<()> {
             .into_pyarray(py),
     )?;
     Ok(())
-}
-
-/// `summary.json` of `rocking simulate` (cli/src/commands/simulate.rs), field for field; `scene`
-/// is the path of a scene file, None for a scene given as a dict.
-#[derive(Serialize)]
-struct Summary<'a> {
-    scene: Option<String>,
-    title: &'a str,
-    excitation: String,
-    overturned: bool,
-    t_end: f64,
-    impacts: usize,
-    stop_reason: &'static str,
-    stop_interface: Option<usize>,
-    peak_block_rotation: &'a [f64],
-    statuses_end: &'a [Status],
-    /// Events by kind.
-    events: BTreeMap<&'static str, usize>,
-    energy: Energy,
-    dt: f64,
-    wall_time_s: f64,
-}
-
-/// The energy balance and its residual.
-#[derive(Serialize)]
-struct Energy {
-    #[serde(flatten)]
-    balance: EnergyBalance,
-    residual: f64,
-}
-
-fn kind_name(k: EventKind) -> &'static str {
-    match k {
-        EventKind::Opening => "opening",
-        EventKind::Impact => "impact",
-        EventKind::Settled => "settled",
-        EventKind::Overturned => "overturned",
-        EventKind::Sliding => "sliding",
-        EventKind::Tension => "tension",
-    }
-}
-
-fn stop_json(s: &StopReason) -> (&'static str, Option<usize>) {
-    match *s {
-        StopReason::Duration => ("duration", None),
-        StopReason::Overturned { interface } => ("overturned", Some(interface)),
-        StopReason::Fallen { interface } => ("fallen", Some(interface)),
-        StopReason::Sliding { interface } => ("sliding", Some(interface)),
-        StopReason::Tension { interface } => ("tension", Some(interface)),
-        StopReason::TooManyEvents => ("too_many_events", None),
-        StopReason::AtRest => ("at_rest", None),
-        StopReason::CannotTip => ("cannot_tip", None),
-    }
-}
-
-impl<'a> Summary<'a> {
-    fn of(scene: &'a Scene, path: Option<String>, o: &'a Outcome, wall: f64) -> Summary<'a> {
-        let (stop_reason, stop_interface) = stop_json(&o.stop_reason);
-        let mut events = BTreeMap::new();
-        for e in &o.events {
-            *events.entry(kind_name(e.kind)).or_insert(0) += 1;
-        }
-        Summary {
-            scene: path,
-            title: &scene.title,
-            excitation: scene.excitation.describe(),
-            overturned: o.overturned,
-            t_end: o.t_end,
-            impacts: o.impacts,
-            stop_reason,
-            stop_interface,
-            peak_block_rotation: &o.peak_block_rotation,
-            statuses_end: &o.statuses_end,
-            events,
-            energy: Energy {
-                balance: o.energy,
-                residual: o.energy.residual(),
-            },
-            dt: scene.options.stepping.dt,
-            wall_time_s: wall,
-        }
-    }
 }

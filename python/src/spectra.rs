@@ -30,8 +30,10 @@ fn spectra_error(e: SpectraError) -> PyErr {
     value_error(e.to_string())
 }
 
-/// The settings of every simulation of a sweep: `rocking oas/t1/oc`'s `SimulationArgs`.
-#[derive(Clone, Copy)]
+/// The settings of every simulation of a sweep: `rocking oas/t1/oc`'s `SimulationArgs` (a dict
+/// from `_spectra.py`).
+#[derive(Clone, Copy, FromPyObject)]
+#[pyo3(from_item_all)]
 pub struct Simulation {
     pub impacts: i64,
     pub dt_factor: f64,
@@ -92,7 +94,9 @@ fn record_of(obj: &Bound<'_, PyAny>) -> PyResult<(CoreRecord, Option<String>)> {
     Ok((record, Some(path.display().to_string())))
 }
 
-/// The grid of an OAS (`rocking oas`'s `OasGridArgs`).
+/// The grid of an OAS (`rocking oas`'s `OasGridArgs`; a dict from `_spectra.py`).
+#[derive(FromPyObject)]
+#[pyo3(from_item_all)]
 pub struct Grid<'py> {
     pub slenderness: f64,
     pub levels: Bound<'py, PyAny>,
@@ -165,47 +169,16 @@ fn compute_oas(
 /// The OAS of a record: `(oas --json as a dict, i_cr)`; `i_cr` (Eq. 18) of the slenderness for
 /// the simplified spectra of the plots.
 #[pyfunction]
-#[pyo3(signature = (record, slenderness, levels, level_max, sizes, size_min, size_max, blocks, bisection, impacts, dt_factor, tail, hermite, rk4, full_runs, threads, progress))]
-#[allow(clippy::too_many_arguments)]
+#[pyo3(signature = (record, grid, simulation, threads, progress))]
 pub fn _oas<'py>(
     py: Python<'py>,
     record: &Bound<'py, PyAny>,
-    slenderness: f64,
-    levels: Bound<'py, PyAny>,
-    level_max: f64,
-    sizes: Bound<'py, PyAny>,
-    size_min: f64,
-    size_max: f64,
-    blocks: i64,
-    bisection: bool,
-    impacts: i64,
-    dt_factor: f64,
-    tail: Option<f64>,
-    hermite: bool,
-    rk4: bool,
-    full_runs: bool,
+    grid: Grid<'py>,
+    simulation: Simulation,
     threads: Option<usize>,
     progress: Option<Py<PyAny>>,
 ) -> PyResult<(Bound<'py, PyAny>, f64)> {
     let (record, _) = record_of(record)?;
-    let simulation = Simulation {
-        impacts,
-        dt_factor,
-        tail,
-        hermite,
-        rk4,
-        full_runs,
-    };
-    let grid = Grid {
-        slenderness,
-        levels,
-        level_max,
-        sizes,
-        size_min,
-        size_max,
-        blocks,
-        bisection,
-    };
     let o = grid.options(&simulation)?;
     let runner = Runner { threads, progress };
     let t0 = Instant::now();
@@ -219,46 +192,15 @@ pub fn _oas<'py>(
 
 /// `t1 --json`'s row of each record (a `Record` or a path), in order.
 #[pyfunction]
-#[pyo3(signature = (records, slenderness, levels, level_max, sizes, size_min, size_max, blocks, bisection, impacts, dt_factor, tail, hermite, rk4, full_runs, threads, progress))]
-#[allow(clippy::too_many_arguments)]
+#[pyo3(signature = (records, grid, simulation, threads, progress))]
 pub fn _t1<'py>(
     py: Python<'py>,
     records: Vec<Bound<'py, PyAny>>,
-    slenderness: f64,
-    levels: Bound<'py, PyAny>,
-    level_max: f64,
-    sizes: Bound<'py, PyAny>,
-    size_min: f64,
-    size_max: f64,
-    blocks: i64,
-    bisection: bool,
-    impacts: i64,
-    dt_factor: f64,
-    tail: Option<f64>,
-    hermite: bool,
-    rk4: bool,
-    full_runs: bool,
+    grid: Grid<'py>,
+    simulation: Simulation,
     threads: Option<usize>,
     progress: Option<Py<PyAny>>,
 ) -> PyResult<Bound<'py, PyAny>> {
-    let simulation = Simulation {
-        impacts,
-        dt_factor,
-        tail,
-        hermite,
-        rk4,
-        full_runs,
-    };
-    let grid = Grid {
-        slenderness,
-        levels,
-        level_max,
-        sizes,
-        size_min,
-        size_max,
-        blocks,
-        bisection,
-    };
     let o = grid.options(&simulation)?;
     let runner = Runner { threads, progress };
     let mut rows = Vec::with_capacity(records.len());
@@ -271,7 +213,7 @@ pub fn _t1<'py>(
             file,
             slenderness: o.slenderness,
             blocks: o.n_blocks,
-            dt_factor,
+            dt_factor: simulation.dt_factor,
             search: o.search,
             t_p: spectra::replacement_sine(&record).map(|s| s.t_p),
             procedure: None,
@@ -303,7 +245,7 @@ fn shape_of(name: &str) -> PyResult<PulseShape> {
 
 /// The overturning curve of a pulse shape (`rocking oc`): `oc --json` as a dict.
 #[pyfunction]
-#[pyo3(signature = (shape, blocks, slenderness, size, ptp, ptp_min, ptp_max, levels, level_max, impacts, dt_factor, tail, hermite, rk4, full_runs, threads, progress))]
+#[pyo3(signature = (shape, blocks, slenderness, size, ptp, ptp_min, ptp_max, levels, level_max, simulation, threads, progress))]
 #[allow(clippy::too_many_arguments)]
 pub fn _oc<'py>(
     py: Python<'py>,
@@ -316,12 +258,7 @@ pub fn _oc<'py>(
     ptp_max: f64,
     levels: Bound<'py, PyAny>,
     level_max: f64,
-    impacts: i64,
-    dt_factor: f64,
-    tail: Option<f64>,
-    hermite: bool,
-    rk4: bool,
-    full_runs: bool,
+    simulation: Simulation,
     threads: Option<usize>,
     progress: Option<Py<PyAny>>,
 ) -> PyResult<Bound<'py, PyAny>> {
@@ -332,15 +269,7 @@ pub fn _oc<'py>(
         .ok_or_else(|| value_error(format!("blocks = {blocks}: must be >= 1")))?;
     let column = column_of_size(size, slenderness, n_blocks).map_err(spectra_error)?;
     let mut sweep = SweepOptions::default();
-    Simulation {
-        impacts,
-        dt_factor,
-        tail,
-        hermite,
-        rk4,
-        full_runs,
-    }
-    .apply(&mut sweep)?;
+    simulation.apply(&mut sweep)?;
     let block = EquivalentBlock::of_column(&column);
     let g = sweep.simulation.physics.gravity;
     let (mono_p, mono_a_p_min) = (block.frequency_parameter(g), block.a_p_min(g));

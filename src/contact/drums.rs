@@ -264,7 +264,7 @@ impl Drums {
         let mut low = Frame::ground();
         for (k, g) in out.iter_mut().enumerate().take(self.len()) {
             let up = Frame::of(q, k);
-            *g = self.joint_in(q, k, &up, &low);
+            self.joint_into(k, &up, &low, g);
             low = up;
         }
     }
@@ -272,11 +272,14 @@ impl Drums {
     /// Contact geometry of joint `k` at positions `q`.
     pub fn joint(&self, q: &[f64], k: usize) -> JointGeometry {
         let (up, low) = self.frames(q, k);
-        self.joint_in(q, k, &up, &low)
+        let mut g = JointGeometry::default();
+        self.joint_into(k, &up, &low, &mut g);
+        g
     }
 
-    fn joint_in(&self, q: &[f64], k: usize, up: &Frame, low: &Frame) -> JointGeometry {
-        let _ = q;
+    /// Contact geometry of joint `k` between the frames `up` and `low`, written into `g` (in
+    /// place: a geometry is a few hundred bytes, and two columns' worth are made every step).
+    fn joint_into(&self, k: usize, up: &Frame, low: &Frame, g: &mut JointGeometry) {
         let (up, low) = (*up, *low);
         let hl = if k == 0 { 0.0 } else { self.half_height[k - 1] };
         let hu = self.half_height[k];
@@ -285,7 +288,6 @@ impl Drums {
         // Face centres.
         let o_low = low.at(0.0, hl);
         let o_up = up.at(0.0, -hu);
-        let mut g = JointGeometry::default();
         for (i, s) in [1.0_f64, -1.0].into_iter().enumerate() {
             let corner_up = up.at(s * eu, -hu);
             // The upper corner's position along the lower face.
@@ -331,7 +333,6 @@ impl Drums {
         let x_low = dot([r[0] - o_low[0], r[1] - o_low[1]], low.e1);
         let x_up = dot([r[0] - o_up[0], r[1] - o_up[1]], up.e1);
         g.slip = x_low - x_up;
-        g
     }
 
     /// Rows of a contact of joint `k` at location `r` with normal `n` (a bump between the ends).

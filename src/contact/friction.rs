@@ -255,8 +255,8 @@ impl ContactProblem {
     pub fn set(&mut self, joints: &[JointContacts], v_free: &[f64]) {
         let n = self.n;
         for k in 0..n {
-            let jc = joints[k];
-            self.joints[k] = jc;
+            let jc = &joints[k];
+            self.joints[k] = *jc;
             let w = Self::tangent_weights(jc.active);
             self.weights[k] = w;
             let r = &jc.rows;

@@ -18,6 +18,7 @@ impl Stepper {
                 self.start_rates[k][c] = [e.gap, un];
             }
         }
+        self.rates_fresh = true;
     }
 
     /// Root in `(0, h]` of the cubic Hermite interpolant of a gap going from `g0` (rate `u0`) to
@@ -94,7 +95,11 @@ impl Stepper {
     /// `v_split`: `gap / |U|`, or zero for an end already touching (its impact is due now).
     pub(super) fn landing_time(&self, k: usize, c: usize, v_split: f64) -> Option<f64> {
         let e = &self.geometry[k].ends[c];
-        let (un, _) = self.drums.rates(&e.rows, &self.v, k);
+        let un = if self.rates_fresh {
+            self.start_rates[k][c][1]
+        } else {
+            self.drums.rates(&e.rows, &self.v, k).0
+        };
         if e.gap <= self.contact_gap {
             (un < -self.v_touch).then_some(0.0)
         } else {
@@ -154,6 +159,7 @@ impl Stepper {
     }
 
     pub(super) fn restore(&mut self) {
+        self.rates_fresh = false;
         let s = self.saved.as_ref().expect("saved state");
         self.t = s.t;
         self.q.copy_from_slice(&s.q);
@@ -242,6 +248,7 @@ impl Stepper {
     /// rocking joints; `a_g` is the ground acceleration now (for the work of the loads on the
     /// projection that follows). Used by the steps; public for the models' comparisons.
     pub fn impact(&mut self, landing: &[[bool; 2]], a_g: f64) -> Result<(), StepError> {
+        self.rates_fresh = false;
         let n = self.drums.len();
         let kinetic_before = self.kinetic_energy();
         let stages = self.options.n_impacts.max(1);

@@ -18,9 +18,12 @@
 //!   Delassus matrix ([`active_set`]), Lemke's algorithm ([`lemke`]) and the nonsmooth
 //!   Gauss–Seidel iteration ([`fallback`]) as the fallbacks.
 //! - [`moreau`]: one time step; [`landing`]: impacts located inside it and the consecutive-impact
-//!   law; [`projection`]: the positions projected back onto the contacts.
-//! - [`simulation`]: a whole run: options, joint modes, events, stops, slips, energy.
+//!   law; [`projection`]: the positions projected back onto the contacts; [`rest`]: the step of a
+//!   column at rest; [`accounts`]: the energy accounts and work counters.
+//! - [`simulation`]: a whole run: joint modes, events, stops, slips, energy; its options are
+//!   [`options`].
 
+pub mod accounts;
 pub mod active_set;
 pub mod drums;
 pub mod fallback;
@@ -28,5 +31,7 @@ pub mod friction;
 pub mod landing;
 pub mod lemke;
 pub mod moreau;
+pub mod options;
 pub mod projection;
+pub mod rest;
 pub mod simulation;

@@ -48,6 +48,7 @@
 //! the scheme's error); the projections move `q` against the loads (`f·Δq`). The last two are
 //! the energy errors of the scheme.
 
+pub use super::accounts::{EnergyAccounts, StepCounters};
 use super::drums::{Drums, JointGeometry, DOF_PER_DRUM};
 use super::friction::{ContactProblem, JointContacts, JointStatus, Slip, SolveFailure};
 use crate::ground::GroundMotion;
@@ -78,22 +79,6 @@ impl Default for SchemeOptions {
     }
 }
 
-/// Energy accounts of the scheme (J), accumulated over the steps.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct EnergyAccounts {
-    /// Work of the inertial load of the ground motion along the path, `∫ −Σ m a_g dx`.
-    pub ground_work: f64,
-    /// Energy dissipated by the normal impulses at approaching ends (impacts).
-    pub impact: f64,
-    /// Energy dissipated by friction (tangential impulses).
-    pub friction: f64,
-    /// Work of the normal impulses at ends that were not approaching, with the sign of a
-    /// dissipation: the scheme's error at persistent contacts (`O(h)` in total).
-    pub persistent_contact: f64,
-    /// Work of the loads on the projections' displacements (`Σ f·Δq`).
-    pub projection: f64,
-}
-
 /// One impact located and applied inside a step.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LocatedImpact {
@@ -107,29 +92,6 @@ pub struct LocatedImpact {
     pub kinetic_before: f64,
     /// Kinetic energy after (J).
     pub kinetic_after: f64,
-}
-
-/// Counters of the work done.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct StepCounters {
-    /// Sub-steps integrated (accepted).
-    pub substeps: u64,
-    /// Steps taken by the rest shortcut (column closed, sticking and at rest).
-    pub rest_steps: u64,
-    /// Contact problems solved.
-    pub solves: u64,
-    /// Active-set iterations in total.
-    pub iterations: u64,
-    /// Problems that went to Lemke's algorithm.
-    pub fallbacks: u64,
-    /// Projections of the positions.
-    pub projections: u64,
-    /// Impacts located inside steps.
-    pub located_impacts: u64,
-    /// Active-set iterations of the impact problems.
-    pub impact_iterations: u64,
-    /// Problems whose last fallback (nonsmooth Gauss–Seidel) stopped at its cap of sweeps.
-    pub inexact: u64,
 }
 
 /// Why a step failed.
@@ -197,7 +159,13 @@ pub struct Stepper {
     pub(super) flags: Vec<[bool; 2]>,
     pub(super) shifts: Vec<[f64; 3]>,
     pub(super) landing: Vec<[bool; 2]>,
+    /// Gap and normal rate of every end at the start of the sub-step (see `rates_fresh`).
     pub(super) start_rates: Vec<[[f64; 2]; 2]>,
+    /// Whether `start_rates` are those of the current state: set at the top of every round of
+    /// [`Stepper::step`], cleared when a sub-step begins to change the state. The landing
+    /// predictions, the index set and the missed-landing check then share one computation of the
+    /// rates (the same function of the same state: the same numbers).
+    pub(super) rates_fresh: bool,
     pub(super) missed: Vec<[Option<f64>; 2]>,
     pub(super) watching: bool,
     pub(super) missed_found: Option<f64>,
@@ -265,6 +233,7 @@ impl Stepper {
             shifts: vec![[0.0; 3]; n],
             landing: vec![[false; 2]; n],
             start_rates: vec![[[0.0; 2]; 2]; n],
+            rates_fresh: false,
             missed: vec![[None; 2]; n],
             watching: false,
             missed_found: None,
@@ -299,6 +268,7 @@ impl Stepper {
 
     /// Sets positions and velocities (e.g. from a thesis state); statuses from the gaps.
     pub fn set_state(&mut self, t: f64, q: &[f64], v: &[f64]) {
+        self.rates_fresh = false;
         self.t = t;
         self.q.copy_from_slice(q);
         self.v.copy_from_slice(v);
@@ -329,64 +299,6 @@ impl Stepper {
         self.drums.potential_energy(&self.q, self.options.gravity)
     }
 
-    pub(super) fn at_rest(&self) -> bool {
-        self.v.iter().all(|&x| x == 0.0)
-            && self
-                .statuses
-                .iter()
-                .all(|s| s.closed == [true, true] && s.slip == Slip::Stick)
-            && self.geometry.iter().all(|g| {
-                g.ends[0].gap.abs() <= self.contact_gap && g.ends[1].gap.abs() <= self.contact_gap
-            })
-    }
-
-    /// The rest shortcut: a column closed, sticking and at rest stays so if the impulses that
-    /// hold it (statics of the part above each joint, top down) are admissible. This is the
-    /// solution of the step's contact problem then (the Jacobian of a closed, sticking column is
-    /// square and invertible, so the impulses are unique). Returns whether it applied.
-    pub(super) fn rest_step(&mut self, h: f64, a_theta: f64) -> bool {
-        let n = self.drums.len();
-        let g = self.options.gravity;
-        // Suffix sums of the loads' impulse on the part above each joint and of its moment.
-        let (mut fx, mut fy) = (0.0, 0.0);
-        let (mut sx, mut sy) = (0.0, 0.0); // Σ m c
-        for k in (0..n).rev() {
-            let m = self.drums.mass(k);
-            fx += m * a_theta * h; // −h f_x = h m a
-            fy += m * g * h;
-            sx += m * self.q[3 * k];
-            sy += m * self.q[3 * k + 1];
-            let geo = &self.geometry[k];
-            let (rr, rl) = (geo.ends[0].point, geo.ends[1].point);
-            let nrm = geo.ends[0].normal;
-            let t = [nrm[1], -nrm[0]];
-            // The contact impulse F = (fx, fy) and moment about the left end: the loads' impulse
-            // is −h Σ m (a, g) applied at the centres, so the contact's moment about r_L must be
-            // −Σ (c − r_L) × (−h m (a, g)) = Σ (c − r_L) × (h m (a, g)).
-            let mass_above = fy / (g * h);
-            let cx = sx - mass_above * rl[0];
-            let cy = sy - mass_above * rl[1];
-            // Σ m (c − r_L) × (a, g) h = h (cx g − cy a) with cx, cy mass-weighted.
-            let mo = h * (cx * g - cy * a_theta);
-            let fn_ = fx * nrm[0] + fy * nrm[1];
-            let ft = fx * t[0] + fy * t[1];
-            let d = [rr[0] - rl[0], rr[1] - rl[1]];
-            let dn = d[0] * nrm[1] - d[1] * nrm[0];
-            let dt = d[0] * t[1] - d[1] * t[0];
-            if dn.abs() <= 0.0 {
-                return false;
-            }
-            let pr = (mo - 0.5 * ft * dt) / dn;
-            let pl = fn_ - pr;
-            if pr < 0.0 || pl < 0.0 || ft.abs() > self.mu[k] * fn_ {
-                return false;
-            }
-        }
-        self.t += h;
-        self.counters.rest_steps += 1;
-        true
-    }
-
     /// Advances by one step of length `h`.
     pub fn step(&mut self, h: f64, motion: &dyn GroundMotion) -> Result<(), StepError> {
         self.impacts.clear();
@@ -407,6 +319,7 @@ impl Stepper {
                 self.t = t_end;
                 return Ok(());
             }
+            self.record_start_rates();
             if self.options.locate_impacts && splits < MAX_SPLITS {
                 if let Some((tau, _)) = self.next_landing(remaining) {
                     splits += 1;
@@ -417,7 +330,6 @@ impl Stepper {
             let watch = self.options.locate_impacts && splits < MAX_SPLITS;
             if watch {
                 self.save();
-                self.record_start_rates();
             }
             self.watching = watch;
             let result = self.substep(remaining, motion, None);
@@ -449,55 +361,14 @@ impl Stepper {
     /// geometry.
     pub(super) fn fill_contacts(&mut self) {
         for k in 0..self.drums.len() {
+            // Field by field: the rows move in place instead of through a temporary.
             let geo = &self.predicted[k];
-            self.contacts[k] = JointContacts {
-                active: self.flags[k],
-                bilateral: [false; 2],
-                rows: [geo.ends[0].rows, geo.ends[1].rows],
-                mu: self.mu[k],
-            };
-        }
-    }
-
-    /// Adds the contact work of the solved problem to the accounts: `−P·U_mid` per row, with
-    /// `U_before` the rows' rates of the velocities before. In an impact (`impact`) all of it is
-    /// impact dissipation; in a step, the normal work at approaching ends and the tangential work
-    /// of a sticking joint with an approaching end is, the tangential work of a slipping joint is
-    /// friction, the rest is the scheme's work at persistent contacts.
-    pub(super) fn account_contact_work(&mut self, v_before: &[f64], impact: bool) {
-        let n = self.drums.len();
-        for k in 0..n {
-            let p = self.problem.impulses(k);
-            self.joint_impulses[k] = [p[0] + p[1], p[2]];
-            if p == [0.0; 3] {
-                continue;
-            }
-            let ua = self.problem.rates(k);
-            let sh = self.shifts[k];
-            let ua = [ua[0] - sh[0], ua[1] - sh[1], ua[2] - sh[2]];
-            let ub = self.problem.rows_rates(k, v_before);
-            let mut approaching = false;
-            for c in 0..2 {
-                if p[c] != 0.0 {
-                    let w = -p[c] * 0.5 * (ub[c] + ua[c]);
-                    if impact || ub[c] < 0.0 {
-                        approaching = true;
-                        self.energy.impact += w;
-                    } else {
-                        self.energy.persistent_contact += w;
-                    }
-                }
-            }
-            if p[2] != 0.0 {
-                let w = -p[2] * 0.5 * (ub[2] + ua[2]);
-                if self.statuses[k].slip != Slip::Stick {
-                    self.energy.friction += w;
-                } else if approaching {
-                    self.energy.impact += w;
-                } else {
-                    self.energy.persistent_contact += w;
-                }
-            }
+            let c = &mut self.contacts[k];
+            c.active = self.flags[k];
+            c.bilateral = [false; 2];
+            c.rows[0] = geo.ends[0].rows;
+            c.rows[1] = geo.ends[1].rows;
+            c.mu = self.mu[k];
         }
     }
 
@@ -532,11 +403,19 @@ impl Stepper {
         for k in 0..n {
             for c in 0..2 {
                 let e = &self.geometry[k].ends[c];
-                let closing = || e.gap + h * self.drums.rates(&e.rows, &self.v, k).0 <= 0.0;
+                let un = || {
+                    if self.rates_fresh {
+                        self.start_rates[k][c][1]
+                    } else {
+                        self.drums.rates(&e.rows, &self.v, k).0
+                    }
+                };
+                let closing = || e.gap + h * un() <= 0.0;
                 self.flags[k][c] =
                     !excluded.is_some_and(|e| e[k][c]) && (e.gap <= eps || closing());
             }
         }
+        self.rates_fresh = false;
         self.fill_contacts();
         self.problem.set(&self.contacts, &self.v_free);
         // Persistent contacts: an end that carried an impulse in the last step and is not

@@ -28,6 +28,20 @@ pub enum EventKind {
     Tension,
 }
 
+impl EventKind {
+    /// The name in `events.jsonl` and `summary.json` (`"opening"`, `"impact"`, …; the serde name).
+    pub fn name(self) -> &'static str {
+        match self {
+            EventKind::Opening => "opening",
+            EventKind::Impact => "impact",
+            EventKind::Settled => "settled",
+            EventKind::Overturned => "overturned",
+            EventKind::Sliding => "sliding",
+            EventKind::Tension => "tension",
+        }
+    }
+}
+
 /// One event of a simulation.
 #[derive(Clone, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -83,6 +97,36 @@ pub enum StopReason {
     /// The energy bound of [`super::StoppingOptions::stop_when_safe`] proved that the rest of the
     /// ground motion cannot tip the block.
     CannotTip,
+}
+
+impl StopReason {
+    /// The name in `summary.json` (`stop_reason`: `"duration"`, `"overturned"`, …).
+    pub fn name(&self) -> &'static str {
+        match self {
+            StopReason::Duration => "duration",
+            StopReason::Overturned { .. } => "overturned",
+            StopReason::Fallen { .. } => "fallen",
+            StopReason::Sliding { .. } => "sliding",
+            StopReason::Tension { .. } => "tension",
+            StopReason::TooManyEvents => "too_many_events",
+            StopReason::AtRest => "at_rest",
+            StopReason::CannotTip => "cannot_tip",
+        }
+    }
+
+    /// The interface the reason concerns, if any (`stop_interface`).
+    pub fn interface(&self) -> Option<usize> {
+        match *self {
+            StopReason::Overturned { interface }
+            | StopReason::Fallen { interface }
+            | StopReason::Sliding { interface }
+            | StopReason::Tension { interface } => Some(interface),
+            StopReason::Duration
+            | StopReason::TooManyEvents
+            | StopReason::AtRest
+            | StopReason::CannotTip => None,
+        }
+    }
 }
 
 /// Kept states, struct of arrays (`n` interfaces, `2n` DOFs per sample).

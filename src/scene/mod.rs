@@ -25,8 +25,10 @@ use crate::model::cone::{ModelOptions, Solver};
 use serde::Deserialize;
 
 mod contact;
+mod summary;
 use crate::contact::simulation::DrumOptions;
 pub use contact::{FrictionSpec, SchemeChoice};
+pub use summary::{Energy, Summary};
 
 /// One block, bottom to top.
 #[derive(Debug, Deserialize)]

@@ -5,21 +5,18 @@
 //! `DIR/events.jsonl` (one JSON object per event) and `DIR/summary.json`. Files are written only
 //! after the simulation succeeded, each atomically.
 
-use std::collections::BTreeMap;
 use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::time::Instant;
 
 use clap::Args;
-use rocking::driver::{self, EnergyBalance, EventKind, Outcome, StopReason};
+use rocking::driver::{self, EventKind, Outcome, StopReason};
 use rocking::ground::FnMotion;
-use rocking::Status;
-use serde::Serialize;
 
 use crate::output::{json_tree, write_atomic};
 use crate::plot::{Chart, Marker, Series, Style, COLORS};
 use crate::progress;
-use rocking::scene::{self, Scene};
+use rocking::scene::{self, Scene, Summary};
 
 /// Options of `rocking simulate`.
 #[derive(Args, Debug)]
@@ -64,7 +61,12 @@ pub fn run(a: &SimulateArgs) -> Result<(), String> {
         }
         write_atomic(&out.join("events.jsonl"), lines.as_bytes())?;
     }
-    let summary = json_tree(&Summary::of(&scene, scene_path, &outcome, wall))?;
+    let summary = json_tree(&Summary::of(
+        &scene,
+        Some(scene_path.display().to_string()),
+        &outcome,
+        wall,
+    ))?;
     let text = serde_json::to_string_pretty(&summary).map_err(|e| e.to_string())?;
     write_atomic(&out.join("summary.json"), format!("{text}\n").as_bytes())?;
     if let Some(p) = plot {
@@ -123,17 +125,6 @@ pub fn history_csv(h: &driver::History) -> String {
     s
 }
 
-fn kind_name(k: EventKind) -> &'static str {
-    match k {
-        EventKind::Opening => "opening",
-        EventKind::Impact => "impact",
-        EventKind::Settled => "settled",
-        EventKind::Overturned => "overturned",
-        EventKind::Sliding => "sliding",
-        EventKind::Tension => "tension",
-    }
-}
-
 fn stop_text(s: &StopReason) -> String {
     match s {
         StopReason::Duration => "end of duration".into(),
@@ -145,76 +136,6 @@ fn stop_text(s: &StopReason) -> String {
         StopReason::AtRest => "at rest for good (the ground can no longer open the column)".into(),
         StopReason::CannotTip => {
             "safe for good (the rest of the ground motion cannot tip the block)".into()
-        }
-    }
-}
-
-fn stop_json(s: &StopReason) -> (&'static str, Option<usize>) {
-    match *s {
-        StopReason::Duration => ("duration", None),
-        StopReason::Overturned { interface } => ("overturned", Some(interface)),
-        StopReason::Fallen { interface } => ("fallen", Some(interface)),
-        StopReason::Sliding { interface } => ("sliding", Some(interface)),
-        StopReason::Tension { interface } => ("tension", Some(interface)),
-        StopReason::TooManyEvents => ("too_many_events", None),
-        StopReason::AtRest => ("at_rest", None),
-        StopReason::CannotTip => ("cannot_tip", None),
-    }
-}
-
-/// `summary.json`.
-#[derive(Serialize)]
-struct Summary<'a> {
-    scene: String,
-    title: &'a str,
-    excitation: String,
-    overturned: bool,
-    t_end: f64,
-    impacts: usize,
-    stop_reason: &'static str,
-    stop_interface: Option<usize>,
-    peak_block_rotation: &'a [f64],
-    statuses_end: &'a [Status],
-    /// Events by kind.
-    events: BTreeMap<&'static str, usize>,
-    energy: Energy,
-    dt: f64,
-    wall_time_s: f64,
-}
-
-/// The energy balance and its residual.
-#[derive(Serialize)]
-struct Energy {
-    #[serde(flatten)]
-    balance: EnergyBalance,
-    residual: f64,
-}
-
-impl<'a> Summary<'a> {
-    fn of(scene: &'a Scene, path: &Path, o: &'a Outcome, wall: f64) -> Summary<'a> {
-        let (stop_reason, stop_interface) = stop_json(&o.stop_reason);
-        let mut events = BTreeMap::new();
-        for e in &o.events {
-            *events.entry(kind_name(e.kind)).or_insert(0) += 1;
-        }
-        Summary {
-            scene: path.display().to_string(),
-            title: &scene.title,
-            excitation: scene.excitation.describe(),
-            overturned: o.overturned,
-            t_end: o.t_end,
-            impacts: o.impacts,
-            stop_reason,
-            stop_interface,
-            peak_block_rotation: &o.peak_block_rotation,
-            statuses_end: &o.statuses_end,
-            events,
-            energy: Energy {
-                balance: o.energy,
-                residual: o.energy.residual(),
-            },
-            dt: scene.options.stepping.dt,
-            wall_time_s: wall,
         }
     }
 }
@@ -250,7 +171,7 @@ fn chart(scene: &Scene, o: &Outcome) -> Result<Chart, String> {
         };
         chart.markers.push(Marker {
             x: e.t,
-            kind: kind_name(e.kind).to_string(),
+            kind: e.kind.name().to_string(),
             color,
         });
     }
