@@ -2,17 +2,18 @@
 //! the state the next one at the same instant receives — its configuration, and its kinetic
 //! energy (a later event at the same instant may only take energy away).
 //!
-//! Prepared for the event-driven driver (`src/driver/`), which is being restructured on another
-//! branch; the fix lands there (see docs/multidrum.md, "Simultaneous events"). Today the chain
-//! breaks where a DOF that has just opened (at exactly zero angle, moving away) turns back within
-//! the next step: the linear locator puts the crossing at the start of that step, the same
-//! instant, and the impact routine treats the DOF as grazing and zeroes its rate alone — not a
-//! projection in the kinetic metric, so the energy can rise (up to 6× on ten 1 × 1 m drums under
-//! MUL009 at 4.9 m/s²). Run with `cargo test --release --test event_chain -- --ignored`.
+//! The chain used to break where a DOF that has just opened (at exactly zero angle, moving away)
+//! turns back within the next step: the linear locator put the crossing at the start of that
+//! step, the same instant, and the impact routine treated the DOF as grazing and zeroed its rate
+//! alone — not a projection in the kinetic metric, so the energy could rise (up to 6× on ten
+//! 1 × 1 m drums under MUL009 at 4.9 m/s²). See docs/robustness.md, "Events at one instant".
 
 use std::path::Path;
 
-use rocking::driver::{simulate, Event, Recording, SimulationOptions};
+use rocking::driver::{
+    simulate, Event, InitialState, PhysicsOptions, Recording, SimulationOptions, SteppingOptions,
+    StoppingOptions,
+};
 use rocking::ground::excitation::{Excitation, Pulse};
 use rocking::ground::records::read_at2;
 use rocking::ground::{GroundMotion, NoMotion};
@@ -66,21 +67,36 @@ fn run(name: &str, column: &Column, motion: &dyn GroundMotion, opts: SimulationO
 }
 
 #[test]
-#[ignore = "the fix belongs to the event-driven driver (issue 11), after its restructuring lands"]
 fn simultaneous_events_chain() {
     let mut broken = 0;
-    let two = ModelOptions {
-        n_impacts: 2,
-        ..ModelOptions::default()
+    let two = PhysicsOptions {
+        model: ModelOptions {
+            n_impacts: 2,
+            ..ModelOptions::default()
+        },
+        ..PhysicsOptions::default()
+    };
+    let opts = |dt: f64, duration: f64, physics: PhysicsOptions| SimulationOptions {
+        physics,
+        stepping: SteppingOptions {
+            dt,
+            ..SteppingOptions::default()
+        },
+        stopping: StoppingOptions {
+            duration,
+            ..StoppingOptions::default()
+        },
+        ..SimulationOptions::default()
     };
     // The bundled scenes.
     let col = Column::new(vec![Block::rectangle(1.0, 4.0, 10000.0)]).unwrap();
     let m = Excitation::pulse(Pulse::half_sine(6.0, 0.8).unwrap()).unwrap();
-    broken += run("single block, half sine", &col, &m, {
-        let mut o = SimulationOptions::default();
-        o.stopping.duration = 8.0;
-        o
-    });
+    broken += run(
+        "single block, half sine",
+        &col,
+        &m,
+        opts(1e-3, 8.0, PhysicsOptions::default()),
+    );
     let granite = |h: f64| Block {
         contact_width: Some(0.096),
         ..Block::rectangle(0.1, h, 16.2)
@@ -89,26 +105,18 @@ fn simultaneous_events_chain() {
         "thesis 4.2",
         &Column::new(vec![granite(0.3); 2]).unwrap(),
         &NoMotion,
-        {
-            let mut o = SimulationOptions::default();
-            o.stepping.dt = 1e-4;
-            o.stopping.duration = 1.5;
-            o.physics.model = two;
-            o.initial.angles = Some(vec![0.0, 0.153]);
-            o
+        SimulationOptions {
+            initial: InitialState {
+                angles: Some(vec![0.0, 0.153]),
+            },
+            ..opts(1e-4, 1.5, two)
         },
     );
     broken += run(
         "thesis 4.3",
         &Column::new(vec![granite(0.2); 3]).unwrap(),
         &Excitation::pulse(Pulse::full_sine(-2.467, 0.6).unwrap()).unwrap(),
-        {
-            let mut o = SimulationOptions::default();
-            o.stepping.dt = 2e-4;
-            o.stopping.duration = 3.0;
-            o.physics.model = two;
-            o
-        },
+        opts(2e-4, 3.0, two),
     );
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/records/synthetic.AT2");
     let rec = read_at2(&path).unwrap().scaled_to_pga(4.0).unwrap();
@@ -116,12 +124,7 @@ fn simultaneous_events_chain() {
         "three drums, synthetic record",
         &Column::new(vec![Block::rectangle(0.6, 1.2, 1100.0); 3]).unwrap(),
         &Excitation::record(rec).unwrap(),
-        {
-            let mut o = SimulationOptions::default();
-            o.stopping.duration = 25.0;
-            o.physics.model = two;
-            o
-        },
+        opts(1e-3, 25.0, two),
     );
     // Extreme scenes: ten drums H/B = 1.2 under a pulse, thirty squat drums.
     for (n, w, h) in [(10, 1.0, 1.2), (30, 1.0, 0.4)] {
@@ -129,12 +132,7 @@ fn simultaneous_events_chain() {
             &format!("{n} drums {w} × {h}, full sine"),
             &Column::new(vec![Block::rectangle(w, h, 2500.0 * w * h); n]).unwrap(),
             &Excitation::pulse(Pulse::full_sine(6.0, 0.6).unwrap()).unwrap(),
-            {
-                let mut o = SimulationOptions::default();
-                o.stopping.duration = 5.0;
-                o.physics.model = two;
-                o
-            },
+            opts(1e-3, 5.0, two),
         );
     }
     // The issue's case: ten 1 × 1 m drums under MUL009 at 4.9 m/s² (needs ../shared).
@@ -145,12 +143,7 @@ fn simultaneous_events_chain() {
             "ten 1 × 1 m drums, MUL009 at 4.9 m/s²",
             &Column::new(vec![Block::rectangle(1.0, 1.0, 2500.0); 10]).unwrap(),
             &Excitation::record(rec.scaled_to_pga(4.9).unwrap()).unwrap(),
-            {
-                let mut o = SimulationOptions::default();
-                o.stopping.duration = 40.0;
-                o.physics.model = two;
-                o
-            },
+            opts(1e-3, 40.0, two),
         );
     }
     assert_eq!(broken, 0, "events at one instant must chain");

@@ -217,6 +217,9 @@ pub fn _t1<'py>(
             search: o.search,
             t_p: spectra::replacement_sine(&record).map(|s| s.t_p),
             procedure: None,
+            t1_range: None,
+            t1_conservative: None,
+            band: None,
         });
     }
     to_python(py, &rows)

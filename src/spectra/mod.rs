@@ -29,8 +29,11 @@
 //! checks; `replacement_sine.rs` the replacement sine duration `t_p` of a record (Eq. 25);
 //! `statistics.rs` the fractile and the correlation of a record suite; `suite.rs` the
 //! characteristic OAS of a suite, its design `t_1` and the check of the simplified spectra against
-//! every record; `hull.rs` the convex hull of a transformed OAS (Fig. 48–49).
+//! every record; `hull.rs` the convex hull of a transformed OAS (Fig. 48–49); `band.rs` `t_1` with
+//! its band over equivalent perturbations (half the step, grids shifted by half a cell, the other
+//! event locator).
 
+mod band;
 mod hull;
 mod oas;
 mod overturning_curve;
@@ -44,6 +47,7 @@ mod sweep;
 mod time_step;
 mod transformed;
 
+pub use band::{t1_band, Perturbation, T1Band};
 pub use hull::TransformedHull;
 pub use oas::{
     linear_levels, log_sizes, oas, record_overturns, Oas, OasLevel, OasOptions, OasPoint,

@@ -281,6 +281,29 @@ pub struct T1Row {
     /// The t₁ procedure, when not the default (`converged`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub procedure: Option<String>,
+    /// With a band (`rocking t1 --band`): `[min, max]` of t₁ over the perturbations.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub t1_range: Option<[f64; 2]>,
+    /// With a band: `i_cr / f_min` of the envelope of the perturbed spectra.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub t1_conservative: Option<f64>,
+    /// With a band: t₁ of each perturbation, by name.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub band: Option<std::collections::BTreeMap<String, Option<f64>>>,
+}
+
+impl T1Row {
+    /// Writes the band's figures into the row.
+    pub fn set_band(&mut self, b: &super::T1Band) {
+        self.t1_range = b.t1_range;
+        self.t1_conservative = b.t1_conservative;
+        self.band = Some(
+            b.members
+                .iter()
+                .map(|(p, t)| (p.name().to_string(), *t))
+                .collect(),
+        );
+    }
 }
 
 /// One grid point of an overturning curve.

@@ -408,3 +408,34 @@ fn invalid_options_name_the_field() {
     let e = column_of_size(1.0, 12.0, 0).unwrap_err().to_string();
     assert!(e.starts_with("n_blocks = 0: "), "{e}");
 }
+
+/// `t_1`'s band on the bundled record (small grid): the nominal member is the plain OAS, every
+/// perturbation gives a `t_1`, the range holds them all, the conservative `t_1` (the envelope's
+/// `f_min`) is its upper end, and the shifted grids are what they say.
+#[test]
+fn t1_band_of_the_bundled_record() {
+    let record = bundled_record();
+    let o = small_grid();
+    let (nominal, band) = super::t1_band(&record, &o, None).unwrap();
+    assert_eq!(nominal, oas(&record, &o, None).unwrap());
+    assert_eq!(band.members.len(), 5);
+    assert_eq!(
+        band.members[0],
+        (super::Perturbation::Nominal, nominal.t1())
+    );
+    let [lo, hi] = band.t1_range.unwrap();
+    for (p, t) in &band.members {
+        let t = t.unwrap_or_else(|| panic!("{p:?}: no t1"));
+        assert!(lo <= t && t <= hi, "{p:?}: {t} outside [{lo}, {hi}]");
+    }
+    assert_eq!(band.t1_conservative, Some(hi));
+    // The members are different spectra: at least one t1 differs from the nominal.
+    assert!(lo < hi, "{band:?}");
+    let levels = super::Perturbation::LevelsShifted.apply(&o).levels;
+    assert_eq!(levels.len(), o.levels.len() - 1);
+    assert!((levels[0] - 0.5 * (o.levels[0] + o.levels[1])).abs() < 1e-12);
+    let sizes = super::Perturbation::SizesShifted.apply(&o).sizes;
+    assert!((sizes[0] - (o.sizes[0] * o.sizes[1]).sqrt()).abs() < 1e-9);
+    let half = super::Perturbation::HalfStep.apply(&o).sweep.time_step;
+    assert_eq!(half, o.sweep.time_step.scaled(0.5));
+}

@@ -192,7 +192,7 @@ pub struct OasGridArgs {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, ValueEnum)]
 pub enum Procedure {
     /// The default, converged for accuracy: the whole record and 2/p of free rocking after it,
-    /// dt = min(record dt / 2, 1/(50 p)), 80 linear levels 1…10 with both ends.
+    /// dt = min(record dt / 4, 1/(100 p)), 80 linear levels 1…10 with both ends.
     #[default]
     Converged,
     /// The run ends with the record: no free rocking after the last sample.

@@ -47,6 +47,12 @@ pub struct T1Args {
     /// With --svg: also write the chart as PNG.
     #[arg(long, requires = "svg")]
     pub png: bool,
+    /// Also t₁'s band: the OAS again with half the time step, the level and the size grids
+    /// shifted by half a cell and the other event locator; adds `t1_range` [min, max],
+    /// `t1_conservative` (f_min of the envelope of those spectra) and each one's t₁ (`band`).
+    /// Five OAS per record.
+    #[arg(long, conflicts_with = "merge")]
+    pub band: bool,
 }
 
 /// One record's row of `t1 --json`: the library's row and, with `--explain`, the run of the
@@ -116,14 +122,28 @@ pub fn run(a: &T1Args) -> Result<(), String> {
     let rows: Vec<Row> = if a.merge.is_empty() {
         let o = a.grid.options(&a.simulation);
         let files = a.shard.keep(&a.records);
-        let bar = progress::bar((files.len() * o.levels.len()) as u64, "t1");
+        let members = if a.band {
+            spectra::Perturbation::ALL.len()
+        } else {
+            1
+        };
+        let bar = progress::bar((files.len() * o.levels.len() * members) as u64, "t1");
         let mut rows = Vec::new();
         for f in files {
             bar.set_message(f.display().to_string());
             let record = super::sweep::read(&f)?;
             let t0 = Instant::now();
             let tick = || bar.inc(1);
-            let r = spectra::oas(&record, &o, Some(&tick)).map_err(|e| e.to_string())?;
+            let (r, band) = if a.band {
+                let (r, b) =
+                    spectra::t1_band(&record, &o, Some(&tick)).map_err(|e| e.to_string())?;
+                (r, Some(b))
+            } else {
+                (
+                    spectra::oas(&record, &o, Some(&tick)).map_err(|e| e.to_string())?,
+                    None,
+                )
+            };
             let t_p = spectra::replacement_sine(&record).map(|s| s.t_p);
             let summary = Summary::of(&r, t0.elapsed().as_secs_f64());
             let governing = if a.explain {
@@ -131,7 +151,7 @@ pub fn run(a: &T1Args) -> Result<(), String> {
             } else {
                 None
             };
-            rows.push(Row {
+            let mut row = Row {
                 row: T1Row {
                     summary,
                     file: Some(f.display().to_string()),
@@ -142,9 +162,16 @@ pub fn run(a: &T1Args) -> Result<(), String> {
                     t_p,
                     procedure: (a.grid.procedure != Procedure::Converged)
                         .then(|| a.grid.procedure.name()),
+                    t1_range: None,
+                    t1_conservative: None,
+                    band: None,
                 },
                 governing,
-            });
+            };
+            if let Some(b) = &band {
+                row.set_band(b);
+            }
+            rows.push(row);
         }
         bar.finish_and_clear();
         rows
@@ -205,6 +232,9 @@ pub fn run(a: &T1Args) -> Result<(), String> {
                 f(s.f_min),
                 f(r.t_p)
             );
+            if let (Some([lo, hi]), Some(c)) = (r.t1_range, r.t1_conservative) {
+                println!("    t1 band: {lo:.3}-{hi:.3} s, conservative {c:.3} s");
+            }
             if let Some(g) = &r.governing {
                 println!(
                     "    governing run: {} at {:.2} s after {} impacts; strong motion {:.2}-{:.2} s \

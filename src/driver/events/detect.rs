@@ -1,6 +1,7 @@
 //! Which event comes first inside a step, and where: the checks of SPEC §5 at the step's end —
 //! (2) an open DOF that crossed zero moving back towards it (an impact; a DOF that has just
-//! opened starts at zero and must not fire at once, trap (b)), (1) a closed interface whose
+//! opened starts at zero and must not fire at once, trap (b): its return is located on the
+//! Hermite cubic of the step with either locator), (1) a closed interface whose
 //! reaction takes the inadmissible sign (an opening) — each located by the chosen
 //! [`EventLocator`] as a fraction `s ∈ [0, 1]` of the step.
 
@@ -29,8 +30,12 @@ pub(crate) fn first_event<C: ChainDynamics>(
         let (g0, g1) = (sigma * state.phi[d], sigma * step.phi1[d]);
         if g1 < 0.0 && g0 >= 0.0 {
             let s = match locator {
-                EventLocator::Linear => g0 / (g0 - g1),
-                EventLocator::Hermite => hermite_crossing(
+                // A DOF at exactly zero at the start of the step has just opened (SPEC §5 trap
+                // (b)): the chord from zero would put its crossing at the start, the instant of
+                // the opening, although it moved away and came back within the step. Its return
+                // is located on the Hermite cubic instead (the root after its maximum on (0, 1]).
+                EventLocator::Linear if g0 > 0.0 => g0 / (g0 - g1),
+                _ => hermite_crossing(
                     step.h,
                     g0,
                     g1,
