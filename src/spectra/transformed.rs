@@ -105,7 +105,12 @@ impl Oas {
             for q in &pts[i + 1..] {
                 if q.level != p.level {
                     let b = (q.f - p.f) / (q.level - p.level);
-                    consider(p.f - b * p.level, b);
+                    // Two points on a line through the origin leave a rounding residue as the
+                    // intercept (1/a would then print t1' ~ 1e14 s): within the feasibility
+                    // tolerance it is the origin line.
+                    let a = p.f - b * p.level;
+                    let a = if a.abs() <= 1e-12 * p.f.abs() { 0.0 } else { a };
+                    consider(a, b);
                 }
             }
         }
