@@ -198,15 +198,8 @@ fn charts(o: &Oas) -> Vec<(&'static str, Chart)> {
             });
         }
     }
-    let chart = |title: String, x_label: &str, x_scale, x_range, series| Chart {
-        title,
-        x_label: x_label.into(),
-        y_label: "a_p / a_p,min".into(),
-        x_scale,
-        x_range: Some(x_range),
-        y_range: Some((0.0, lmax)),
-        series,
-        ..Chart::default()
+    let chart = |title, x_label, x_scale, x_range, series| {
+        level_chart(title, x_label, x_scale, Some(x_range), lmax, series)
     };
     vec![
         (
@@ -240,4 +233,25 @@ fn charts(o: &Oas) -> Vec<(&'static str, Chart)> {
             ),
         ),
     ]
+}
+
+/// A chart of OAS curves: the level `a_p / a_p,min` (0 to `level_max`) against `p`, `f` or `R`.
+pub(crate) fn level_chart(
+    title: String,
+    x_label: &str,
+    x_scale: Scale,
+    x_range: Option<(f64, f64)>,
+    level_max: f64,
+    series: Vec<Series>,
+) -> Chart {
+    Chart {
+        title,
+        x_label: x_label.into(),
+        y_label: "a_p / a_p,min".into(),
+        x_scale,
+        x_range,
+        y_range: Some((0.0, level_max)),
+        series,
+        ..Chart::default()
+    }
 }

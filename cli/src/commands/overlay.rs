@@ -281,14 +281,8 @@ fn charts(reports: &[OasReport]) -> Vec<(&'static str, Chart)> {
             .collect::<Vec<_>>()
     };
     let record = reports.first().map_or(String::new(), |r| r.record.clone());
-    let chart = |title: String, x_label: &str, x_scale, series| Chart {
-        title,
-        x_label: x_label.into(),
-        y_label: "a_p / a_p,min".into(),
-        x_scale,
-        y_range: Some((0.0, lmax)),
-        series,
-        ..Chart::default()
+    let chart = |title, x_label, x_scale, series| {
+        super::oas::level_chart(title, x_label, x_scale, None, lmax, series)
     };
     vec![
         (

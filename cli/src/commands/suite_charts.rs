@@ -5,6 +5,7 @@
 use rocking::spectra::report::{OasReport, SuiteReport};
 use rocking::spectra::{statistics, TransformedHull};
 
+use super::oas::level_chart;
 use crate::plot::{Chart, Scale, Series, Style, COLORS};
 
 /// The grey of the individual records.
@@ -234,15 +235,8 @@ pub fn charts(r: &SuiteReport) -> Vec<(&'static str, Chart)> {
         .fold(2.0, f64::max)
         .min(8.0);
 
-    let chart = |title: String, x_label: &str, x_scale, x_range, series| Chart {
-        title,
-        x_label: x_label.into(),
-        y_label: "a_p / a_p,min".into(),
-        x_scale,
-        x_range: Some(x_range),
-        y_range: Some((0.0, lmax)),
-        series,
-        ..Chart::default()
+    let chart = |title, x_label, x_scale, x_range, series| {
+        level_chart(title, x_label, x_scale, Some(x_range), lmax, series)
     };
     let of = format!("{}, H/B = {slenderness}", r.name);
     vec![
