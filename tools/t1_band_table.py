@@ -1,0 +1,58 @@
+#!/usr/bin/env python3
+"""The t₁ band of the far-field records against the thesis's Table 4: a markdown section from
+`rocking t1 --band --json` outputs (one or more shard files).
+
+usage: tools/t1_band_table.py SHARED_DIR BAND.json [BAND.json ...] >> docs/t1-table.md
+
+Per record: the thesis's t₁, ours (nominal), the band [min, max] over the five spectra of
+`--band`, its width relative to the nominal t₁, the conservative t₁ (f_min of the envelope), and
+whether the thesis's value lies inside the band.
+"""
+import csv, json, os, statistics, sys
+
+sys.path.insert(0, os.path.dirname(__file__))
+shared, files = sys.argv[1], sys.argv[2:]
+
+
+def thesis_t1(path):
+    rows = {}
+    for line in open(path, encoding="utf-8"):
+        parts = line.rstrip("\n").split("\t")
+        if parts and parts[0].startswith("FF-") and len(parts) >= 9:
+            try:
+                rows[parts[0]] = float(parts[6])
+            except ValueError:
+                pass
+    return rows
+
+
+thesis = thesis_t1(os.path.join(shared, "seed/thesis-rocking-mechanisms.txt"))
+index = {os.path.basename(r["file"]): r for r in csv.DictReader(open(os.path.join(shared, "records/fema-p695/index.csv")))}
+rows = [r for f in files for r in json.load(open(f))]
+rows.sort(key=lambda r: int(index[os.path.basename(r["file"])]["thesis_id"][3:]))
+
+out = []
+w = out.append
+w("| thesis id | record | thesis t₁ | ours t₁ | band [min, max] | width | conservative t₁ | half step | levels shifted | sizes shifted | other locator | thesis inside |")
+w("|---|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---|")
+widths, inside, below_cons, n = [], 0, 0, 0
+for r in rows:
+    tid = index[os.path.basename(r["file"])]["thesis_id"]
+    th = thesis.get(tid)
+    lo, hi = r["t1_range"]
+    width = (hi - lo) / r["t1"]
+    widths.append(width)
+    b = r["band"]
+    ins = th is not None and lo <= th <= hi
+    if th is not None:
+        n += 1
+        inside += ins
+        below_cons += th <= r["t1_conservative"]
+    w(f"| {tid} | {r['record']} | {th:.3f} | {r['t1']:.3f} | [{lo:.3f}, {hi:.3f}] | {100 * width:.1f} % | "
+      f"{r['t1_conservative']:.3f} | {b['half-step']:.3f} | {b['levels-shifted']:.3f} | {b['sizes-shifted']:.3f} | "
+      f"{b['other-locator']:.3f} | {'yes' if ins else 'no'} |")
+w("")
+w(f"{len(rows)} records. Band width (max − min) / nominal t₁: median {100 * statistics.median(widths):.1f} %, "
+  f"max {100 * max(widths):.1f} %, min {100 * min(widths):.1f} %. Table 4's t₁ inside our band: {inside} of {n}; "
+  f"at or below our conservative t₁: {below_cons} of {n}.")
+print("\n".join(out))
