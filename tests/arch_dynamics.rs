@@ -936,3 +936,102 @@ fn colonnade_overturning_against_single_column() {
         println!("| {ratio} | {} | {} |", show(first[0]), show(first[1]));
     }
 }
+
+/// The capped colonnade's whole overturning curve against Makris & Vassiliou's single column
+/// (the frame and the column of `colonnade_overturning_against_single_column`): for each
+/// `ω_p/p̂`, every amplitude of a grid of 0.05 g tan α from 1 to 8 that overturns, as
+/// intervals, for the frame (loop driver) and the single column with `p = p̂` (column driver),
+/// and the grid points where the two verdicts differ. `PULSE=sine`: one full sine cycle of
+/// `ω_p` (Makris & Vassiliou's one-sine pulse, whose overturning region has the island of
+/// overturning after an impact) instead of the half-sine. Prints the tables of
+/// docs/arches.md §3.
+#[test]
+#[ignore]
+fn colonnade_overturning_curve() {
+    let sine = std::env::var("PULSE").is_ok_and(|p| p == "sine");
+    use rocking::chain::colonnade::CappedColonnade;
+    use rocking::driver::{simulate, SimulationOptions, SteppingOptions, StoppingOptions};
+    use rocking::model::column::{Block, Column};
+    let (w, h, m) = (1.0, 5.0, 12500.0);
+    let gamma = 0.5;
+    let frame = CappedColonnade::frame(w, h, m, 4.0, 0.5, 2.0 * gamma * m);
+    let chain = frame.chain().unwrap();
+    let alpha = (w / h).atan();
+    let r = 0.5 * (w * w + h * h).sqrt();
+    let r_hat = r * (1.0 + 3.0 * gamma) / (1.0 + 2.0 * gamma);
+    let p_hat = (3.0 * GRAVITY / (4.0 * r_hat)).sqrt();
+    let column = Column::new(vec![Block::rectangle(
+        2.0 * r_hat * alpha.sin(),
+        2.0 * r_hat * alpha.cos(),
+        m,
+    )])
+    .unwrap();
+    let a_min = GRAVITY * alpha.tan();
+    let ranges = |v: &[bool], levels: &[f64]| -> String {
+        let mut out = Vec::new();
+        let mut i = 0;
+        while i < v.len() {
+            if v[i] {
+                let j = (i..v.len()).take_while(|&k| v[k]).last().unwrap();
+                out.push(format!("{:.2}–{:.2}", levels[i], levels[j]));
+                i = j + 1;
+            } else {
+                i += 1;
+            }
+        }
+        out.join(", ")
+    };
+    let levels: Vec<f64> = (0..=140).map(|i| 1.0 + 0.05 * i as f64).collect();
+    println!("| ω_p/p̂ | frame overturns at a_p/(g tan α) | single column p = p̂ | differ at |");
+    for ratio in [1.0, 2.0, 3.0, 4.0, 6.0] {
+        let tp = PI / (ratio * p_hat);
+        let length = if sine { 2.0 * tp } else { tp };
+        let duration = length + 4.0;
+        let (mut frame_over, mut column_over) = (Vec::new(), Vec::new());
+        for &level in &levels {
+            let amp = -level * a_min;
+            let motion = FnMotion(
+                move |t: f64| {
+                    if t < length {
+                        amp * (PI * t / tp).sin()
+                    } else {
+                        0.0
+                    }
+                },
+                length,
+            );
+            let out = simulate_loop(
+                &chain,
+                &motion,
+                LoopState::at_rest(&chain),
+                &driver_options(duration),
+            )
+            .unwrap();
+            frame_over.push(out.collapsed);
+            let opts = SimulationOptions {
+                stepping: SteppingOptions {
+                    dt: 1e-3,
+                    ..SteppingOptions::default()
+                },
+                stopping: StoppingOptions {
+                    duration,
+                    ..StoppingOptions::default()
+                },
+                ..SimulationOptions::default()
+            };
+            column_over.push(simulate(&column, &motion, &opts, None).unwrap().overturned);
+        }
+        let differ: Vec<String> = levels
+            .iter()
+            .zip(frame_over.iter().zip(&column_over))
+            .filter(|(_, (a, b))| a != b)
+            .map(|(l, (a, _))| format!("{l:.2}{}", if *a { "f" } else { "c" }))
+            .collect();
+        println!(
+            "| {ratio} | {} | {} | {} |",
+            ranges(&frame_over, &levels),
+            ranges(&column_over, &levels),
+            differ.join(" ")
+        );
+    }
+}
