@@ -982,12 +982,16 @@ fn colonnade_overturning_curve() {
         out.join(", ")
     };
     let levels: Vec<f64> = (0..=140).map(|i| 1.0 + 0.05 * i as f64).collect();
-    println!("| ω_p/p̂ | frame overturns at a_p/(g tan α) | single column p = p̂ | differ at |");
+    println!(
+        "| ω_p/p̂ | frame overturns at a_p/(g tan α) (impacts before the lowest) | single column \
+         p = p̂ | differ at |"
+    );
     for ratio in [1.0, 2.0, 3.0, 4.0, 6.0] {
         let tp = PI / (ratio * p_hat);
         let length = if sine { 2.0 * tp } else { tp };
         let duration = length + 4.0;
         let (mut frame_over, mut column_over) = (Vec::new(), Vec::new());
+        let mut first_impacts = [0usize; 2];
         for &level in &levels {
             let amp = -level * a_min;
             let motion = FnMotion(
@@ -1007,6 +1011,11 @@ fn colonnade_overturning_curve() {
                 &driver_options(duration),
             )
             .unwrap();
+            let closings = out
+                .events
+                .iter()
+                .filter(|e| matches!(e.kind, LoopEventKind::Closing { .. }))
+                .count();
             frame_over.push(out.collapsed);
             let opts = SimulationOptions {
                 stepping: SteppingOptions {
@@ -1019,7 +1028,16 @@ fn colonnade_overturning_curve() {
                 },
                 ..SimulationOptions::default()
             };
-            column_over.push(simulate(&column, &motion, &opts, None).unwrap().overturned);
+            let single = simulate(&column, &motion, &opts, None).unwrap();
+            // Impacts before the lowest overturning amplitude of each: 0 is the mode without
+            // impact, more is overturning after impacts.
+            if out.collapsed && !frame_over[..frame_over.len() - 1].contains(&true) {
+                first_impacts[0] = closings;
+            }
+            if single.overturned && !column_over.contains(&true) {
+                first_impacts[1] = single.impacts;
+            }
+            column_over.push(single.overturned);
         }
         let differ: Vec<String> = levels
             .iter()
@@ -1028,9 +1046,11 @@ fn colonnade_overturning_curve() {
             .map(|(l, (a, _))| format!("{l:.2}{}", if *a { "f" } else { "c" }))
             .collect();
         println!(
-            "| {ratio} | {} | {} | {} |",
+            "| {ratio} | {} ({} impacts) | {} ({} impacts) | {} |",
             ranges(&frame_over, &levels),
+            first_impacts[0],
             ranges(&column_over, &levels),
+            first_impacts[1],
             differ.join(" ")
         );
     }
