@@ -240,7 +240,10 @@ fn an_arch_scene_runs_the_loop_driver() {
     assert!(events.lines().any(|l| l.contains("\"kind\":\"closing\"")));
     let history = std::fs::read_to_string(out.join("history.csv")).unwrap();
     assert!(history.starts_with("t,angle_0,"));
-    assert!(history.lines().count() > 700);
+    // A row per moving step (the arch opens at 0.109 s and collapses at 0.7196 s: some 600
+    // steps of 1 ms) and per event (46), 641 rows (over 700 when the linearly located closings
+    // made 161 events).
+    assert!(history.lines().count() > 600);
     for chart in [plot.clone(), out.join("plot_history.svg")] {
         assert!(std::fs::read_to_string(&chart).unwrap().contains("<svg"));
     }
