@@ -113,6 +113,14 @@ fn issue_columns_never_end_by_the_event_cap() {
             o.stop,
             o.t_end
         );
+        // Handed to Moreau–Jean exactly: the same kinetic energy in both coordinates.
+        for s in o.switches.iter().filter(|s| s.to == SchemePart::Moreau) {
+            let scale = s.kinetic_before.max(1e-6);
+            assert!(
+                (s.kinetic_after - s.kinetic_before).abs() <= 1e-9 * scale,
+                "{s:?}"
+            );
+        }
         // The identity with every term: the Moreau–Jean parts close to round-off, the driver's
         // parts to their integration error (the trapezoidal ground work, Eq. 6).
         assert!(

@@ -133,7 +133,7 @@ pub fn simulate(
             SchemePart::Moreau,
             why.name(),
             joint,
-            [kinetic; 2],
+            [seg.outcome.energy.kinetic_end, kinetic],
         );
         let quiet_since = run.st.t;
         run.last_event = quiet_since;
