@@ -259,7 +259,9 @@ fn an_arch_scene_runs_the_loop_driver() {
         serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
     assert_eq!(summary["collapsed"], true, "{summary}");
     let t_end = summary["t_end"].as_f64().unwrap();
-    assert!((t_end - 0.720272).abs() < 1e-6, "{t_end}");
+    // 0.720272 s before the closings were located on the step's cubic (docs/arches.md §2b: the
+    // instant converges to 0.7195 s as dt shrinks; the new figure is 0.65 ms nearer to it).
+    assert!((t_end - 0.719618).abs() < 1e-6, "{t_end}");
     assert!(summary["max_closure_residual"].as_f64().unwrap() < 1e-12);
     assert_eq!(summary["statuses_end"].as_array().unwrap().len(), 21);
     // The first mechanism: the limit-analysis hinges (3, 15 intrados; 9, 20 extrados).
@@ -278,7 +280,10 @@ fn an_arch_scene_runs_the_loop_driver() {
     assert!(events.lines().any(|l| l.contains("\"kind\":\"closing\"")));
     let history = std::fs::read_to_string(out.join("history.csv")).unwrap();
     assert!(history.starts_with("t,angle_0,"));
-    assert!(history.lines().count() > 700);
+    // A row per moving step (the arch opens at 0.109 s and collapses at 0.7196 s: some 600
+    // steps of 1 ms) and per event (46), 641 rows (over 700 when the linearly located closings
+    // made 161 events).
+    assert!(history.lines().count() > 600);
     for chart in [plot.clone(), out.join("plot_history.svg")] {
         assert!(std::fs::read_to_string(&chart).unwrap().contains("<svg"));
     }

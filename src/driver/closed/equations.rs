@@ -3,7 +3,7 @@
 //! `[M_FF G_Fᵀ; G_F 0] [a; μ] = [q_F + f_F; −Ġ v]` (`f`: the exact velocity terms), geometry
 //! recomputed at every evaluation; and the classical RK4 step on the open DOFs.
 
-use crate::chain::Chain;
+use crate::chain::{Chain, ChainPose};
 
 /// The constrained equations of a loop's open DOFs, with scratch for one evaluation.
 #[derive(Clone, Debug)]
@@ -14,6 +14,9 @@ pub struct LoopEquations<'a> {
     rates: Vec<f64>,
     kkt: Vec<f64>,
     rhs: Vec<f64>,
+    pose: ChainPose,
+    velocity: Vec<f64>,
+    scratch: Vec<[f64; 2]>,
 }
 
 impl<'a> LoopEquations<'a> {
@@ -27,6 +30,9 @@ impl<'a> LoopEquations<'a> {
             rates: vec![0.0; m],
             kkt: Vec::new(),
             rhs: Vec::new(),
+            pose: ChainPose::default(),
+            velocity: Vec::new(),
+            scratch: Vec::new(),
         }
     }
 
@@ -54,12 +60,19 @@ impl<'a> LoopEquations<'a> {
             self.phi[d] = x[i];
             self.rates[d] = v[i];
         }
-        let pose = self.chain.pose(&self.phi);
-        let mass = self.chain.mass_matrix(&pose);
-        let q = self.chain.load_vector(&pose, ag, self.gravity);
-        let f = self.chain.velocity_load(&pose, &self.phi, &self.rates);
-        let g = self.chain.closure_matrix(&pose);
-        let gdot = self.chain.closure_rate(&pose, &self.rates);
+        // Only the open DOFs' entries are built (the same formulas as the full matrices, so the
+        // system is the same to the bit): `M_FF`, `q_F`, `f_F`, `G_F` and `Ġ v`.
+        self.chain.pose_into(&self.phi, &mut self.pose);
+        let pose = &self.pose;
+        self.velocity.resize(m, 0.0);
+        self.chain.velocity_load_into(
+            pose,
+            &self.phi,
+            &self.rates,
+            &mut self.velocity,
+            &mut self.scratch,
+        );
+        let gdot = self.chain.closure_rate_of(pose, &self.rates);
         let nf = open.len();
         let k = nf + 3;
         self.kkt.clear();
@@ -68,14 +81,17 @@ impl<'a> LoopEquations<'a> {
         self.rhs.resize(k, 0.0);
         let (a, b) = (&mut self.kkt, &mut self.rhs);
         for (i, &di) in open.iter().enumerate() {
-            for (j, &dj) in open.iter().enumerate() {
-                a[i * k + j] = mass[di * m + dj];
+            for (j, &dj) in open.iter().enumerate().skip(i) {
+                let mij = self.chain.mass_entry(pose, di, dj);
+                a[i * k + j] = mij;
+                a[j * k + i] = mij;
             }
-            for r in 0..3 {
-                a[i * k + nf + r] = g[r * m + di];
-                a[(nf + r) * k + i] = g[r * m + di];
+            let p = self.chain.pivot(pose, di);
+            for (r, g) in [1.0, p[1], -p[0]].into_iter().enumerate() {
+                a[i * k + nf + r] = g;
+                a[(nf + r) * k + i] = g;
             }
-            b[i] = q[di] + f[di];
+            b[i] = self.chain.load_entry(pose, di, ag, self.gravity) + self.velocity[di];
         }
         for r in 0..3 {
             b[nf + r] = -gdot[r];

@@ -14,11 +14,16 @@
 //!   support, the angle times the chain's reach) is reported before the projection
 //!   ([`LoopOutcome::max_step_drift`]) and after it ([`LoopOutcome::max_closure_residual`]);
 //! - **closing**: an open DOF whose depth (`|φ|` on the admissible side) reaches zero inside a
-//!   step. The instant is located by linear interpolation on the first DOF to cross; every open
-//!   joint whose DOF crosses zero within the same step is flagged as closing (a four-hinge loop
-//!   closes its four hinges together; resolution: one step), the state is moved there by linear
-//!   interpolation, the closing angles set to zero (the rest projected back onto the closure),
-//!   and the constrained impact model chooses the configuration and rates after;
+//!   step. Each open DOF's first zero is located on the step's cubic Hermite interpolant (its
+//!   angles and rates at both ends; `locate.rs`), which also sees a DOF dipping through zero and
+//!   back within the step and one that opened at this instant and is back within it; the state
+//!   is carried to the earliest zero by RK4 again from the start of the step over the located
+//!   fraction; every DOF whose zero lies within `SIMULTANEOUS` (1e-6 dt) of the earliest is
+//!   flagged with it (a four-hinge loop closes its four hinges at one instant, SPEC §9: their
+//!   located zeros differ by the interpolant's error, below 1e-12 s here), their angles set to
+//!   zero (the rest projected back onto the closure), and the constrained impact model chooses
+//!   the configuration and rates after; the next step starts at the event. Closings further
+//!   apart are separate impacts, in order;
 //! - **locking a chattering joint**: a joint flipping between its faces at a vanishing rate
 //!   (a Zeno sequence of impacts, each losing almost nothing) cannot be resolved by a fixed step.
 //!   When the impact keeps more than `1 − lock_loss` of the kinetic energy and every closing
@@ -28,12 +33,20 @@
 //!   removed by the kinetic-metric projection together with the closure (the limit of such a
 //!   Zeno sequence is sustained contact; SPEC §5's settling of a column does the same). The
 //!   opening model, asked after the next step, reopens them if the loads call for it;
+//! - **no flight slower than the lock rate**: a joint the impact model opens (at zero angle)
+//!   with a rate below `lock_rate` is kept closed, for the same reason (and, with
+//!   [`LoopOptions::min_flight`], one whose predicted flight is shorter than that many steps):
+//!   the rates are the kinetic-metric projection of the model's onto the other open DOFs with
+//!   the closure. Without this, a nearly closed arch rattles: each closing opens a fan of
+//!   neighbouring joints on the other face at rates of 1e-5 rad/s, which close again one after
+//!   another microseconds later, each closing opening the next fan (docs/arches.md §2b);
 //! - **opening while moving**: after every accepted step the opening model is asked with the
 //!   current configuration; if it prefers another (a new hinge), the new joints open at zero
 //!   angle;
 //! - **settling**: when the kinetic energy after an impact falls below
 //!   [`LoopOptions::settle_ratio`] times the largest kinetic energy of the run, the rates are
-//!   set to zero (at rest; the closing joints are then closed);
+//!   set to zero (at rest; the closing joints are then closed, and the loop is closed outright
+//!   when no point lies farther than `SNAP_DISTANCE`, 1 nm, from the closed geometry);
 //! - **collapse**: the mechanism has passed its point of no return. (a) For any mechanism: the
 //!   potential energy of the weight below the closed loop's, `V < V₀` (beyond the slack the
 //!   closure residual allows). A loop stable under its self-weight (thicker than the minimum,
@@ -43,12 +56,15 @@
 //!   at the maximum of `V` along it: gravity's power turns positive while the hinges open
 //!   (DeJong's four-hinge criterion, the analogue of a column's centre passing its pivot). With
 //!   more DOFs, gravity's power on some of them says nothing about the whole, so (a) alone
-//!   decides. (c) Safeguard: a hinge angle beyond [`LoopOptions::collapse_angle`].
+//!   decides. (b) also requires `V > V₀` (a path from the closed loop climbs before it can pass
+//!   a maximum; a mechanism restarted from rest a hair from closure has gravity's power at
+//!   round-off). (c) Safeguard: a hinge angle beyond [`LoopOptions::collapse_angle`].
 //!
 //! This driver does not yet go through the column's pipeline (`run.rs` with the
 //! `ChainDynamics` traits of `chain.rs`); see `docs/arches.md`.
 
 mod equations;
+mod locate;
 mod projection;
 mod state;
 
@@ -60,6 +76,18 @@ use crate::chain::Chain;
 use crate::ground::GroundMotion;
 use crate::model::configuration::Status;
 use crate::model::constrained::{impact_model_constrained, opening_model_constrained};
+use locate::first_crossing;
+
+/// Closings located within this share of the step of the earliest are one event (the closing
+/// set of one impact): far above the located zeros' error (the cubic interpolant's `O(dt⁴)` on
+/// the angles divided by the closing rate, below 1e-12 s on the arches of docs/arches.md), far
+/// below any physical interval between two impacts the step could resolve.
+const SIMULTANEOUS: f64 = 1e-6;
+
+/// A loop settled with no point displaced farther than this from the closed geometry (m) is
+/// closed: a nanometre, a thousand times the closure projection's round-off on the arches of
+/// docs/arches.md and far below any displacement that matters to a structure.
+const SNAP_DISTANCE: f64 = 1e-9;
 
 fn codes(statuses: &[Status]) -> Vec<i8> {
     statuses.iter().map(|s| s.as_i8()).collect()
@@ -94,6 +122,9 @@ pub fn simulate_loop(
     }
     if options.collapse_angle.is_nan() || options.collapse_angle <= 0.0 {
         return Err(bad("collapse_angle", options.collapse_angle));
+    }
+    if !(options.min_flight >= 0.0 && options.min_flight.is_finite()) {
+        return Err(bad("min_flight", options.min_flight));
     }
     if !(0.0..1.0).contains(&options.lock_loss) {
         return Err(bad("lock_loss", options.lock_loss));
@@ -177,10 +208,18 @@ impl<'a> Runner<'a> {
 
     fn kinetic(&self, s: &LoopState) -> f64 {
         let pose = self.chain.pose(&s.phi);
-        let mass = self.chain.mass_matrix(&pose);
         let m = self.chain.n_dofs();
-        0.5 * (0..m)
-            .map(|a| s.rates[a] * (0..m).map(|b| mass[a * m + b] * s.rates[b]).sum::<f64>())
+        // Over the moving DOFs only (the others' zero rates add nothing to the sums).
+        let moving: Vec<usize> = (0..m).filter(|&a| s.rates[a] != 0.0).collect();
+        0.5 * moving
+            .iter()
+            .map(|&a| {
+                s.rates[a]
+                    * moving
+                        .iter()
+                        .map(|&b| self.chain.mass_entry(&pose, a, b) * s.rates[b])
+                        .sum::<f64>()
+            })
             .sum::<f64>()
     }
 
@@ -283,6 +322,58 @@ impl<'a> Runner<'a> {
         Ok((ends[0], ends[1]))
     }
 
+    /// Joints the impact model opens at zero angle with a rate below the lock rate are kept
+    /// closed: such a flight lasts about one step or less (the rate gravity gives in one step at
+    /// the chain's size, as the lock of a chattering joint), the fixed step cannot resolve it, and
+    /// the limit of the Zeno sequence of impacts it starts is sustained contact. The rates are
+    /// then the kinetic-metric projection of the model's onto the remaining open DOFs with the
+    /// closure (kinetic energy not above the model's); a DOF at zero angle that the projection
+    /// turns inadmissible (closing) is kept closed too, until none is. Fewer than four open
+    /// joints: at rest (SPEC §9). Returns whether anything changed.
+    fn keep_slow_closed(&mut self, s: &mut LoopState) -> Result<bool, LoopError> {
+        let n = self.chain.n_joints();
+        let mut changed = false;
+        let flight = self.options.min_flight;
+        loop {
+            let open = s.open_dofs();
+            let mut acc = vec![0.0; open.len()];
+            if flight > 0.0 {
+                let x: Vec<f64> = open.iter().map(|&d| s.phi[d]).collect();
+                let v: Vec<f64> = open.iter().map(|&d| s.rates[d]).collect();
+                let ag = self.motion.acceleration(s.time);
+                if !self.equations.accelerations(&open, ag, &x, &v, &mut acc) {
+                    return Err(LoopError::Singular(s.time));
+                }
+            }
+            let slow: Vec<usize> = open
+                .iter()
+                .zip(&acc)
+                .filter(|&(&d, &a)| {
+                    let (r, a) = (side(d, n) * s.rates[d], side(d, n) * a);
+                    let short = a < 0.0 && 2.0 * r <= -a * flight * self.options.dt;
+                    s.phi[d] == 0.0 && (r <= self.lock_rate || short)
+                })
+                .map(|(&d, _)| d % n)
+                .collect();
+            if slow.is_empty() {
+                return Ok(changed);
+            }
+            changed = true;
+            for &k in &slow {
+                s.statuses[k] = Status::Closed;
+            }
+            let open = s.open_dofs();
+            if open.len() < 4 {
+                s.rates.iter_mut().for_each(|r| *r = 0.0);
+                return Ok(true);
+            }
+            let pose = self.chain.pose(&s.phi);
+            if !project_rates(self.chain, &pose, &open, &mut s.rates) {
+                return Err(LoopError::Singular(s.time));
+            }
+        }
+    }
+
     fn residual(&self, phi: &[f64]) -> f64 {
         let r = self.chain.closure_residual(&self.chain.pose(phi));
         r[1].hypot(r[2]).max(r[0].abs() * self.reach)
@@ -312,10 +403,14 @@ impl<'a> Runner<'a> {
         // A pose off the closure by `residual` misplaces the weight by about that much.
         let slack =
             self.potential_tolerance + self.options.gravity * self.chain.total_mass() * residual;
-        if self.potential(&s.phi) < self.closed_potential - slack {
+        let potential = self.potential(&s.phi);
+        if potential < self.closed_potential - slack {
             return true;
         }
-        if open.len() != 4 {
+        // Past the maximum of `V` along a one-DOF path from the closed loop, a strict local
+        // minimum: `V` has climbed above `V₀` first. (A mechanism at rest a hair from closure,
+        // angles of 1e-12 rad, has gravity's power at round-off, of either sign.)
+        if open.len() != 4 || potential <= self.closed_potential + slack {
             return false;
         }
         let pose = self.chain.pose(&s.phi);
@@ -378,63 +473,68 @@ impl<'a> Runner<'a> {
             let motion = self.motion;
             let ag = |t: f64| motion.acceleration(t);
             let depth = |d: usize, xi: f64| side(d, n) * xi;
-            // A joint that opened at this instant (depth 0) and is back through zero within the
-            // step, or one that dips through zero and comes back, cannot be located by linear
-            // interpolation: the step is halved until none does (down to 1e-9 dt).
-            let mut h = dt;
-            let crossings = loop {
-                if !self
-                    .equations
-                    .rk4_step(&open, &ag, s.time, h, &x, &v, &mut x1, &mut v1)
+            if !self
+                .equations
+                .rk4_step(&open, &ag, s.time, dt, &x, &v, &mut x1, &mut v1)
+            {
+                return Err(LoopError::Singular(s.time));
+            }
+            // Closing: the first zero of each open DOF's depth on the step's cubic Hermite
+            // interpolant (ending through zero, dipping through zero and back, or opened at this
+            // instant and back within the step).
+            let crossings: Vec<(usize, f64)> = (0..open.len())
+                .filter_map(|i| {
+                    let d = open[i];
+                    let (g0, g1) = (depth(d, x[i]).max(0.0), depth(d, x1[i]));
+                    first_crossing(dt, g0, g1, depth(d, v[i]), depth(d, v1[i])).map(|s| (i, s))
+                })
+                .collect();
+            if let Some(first) = crossings.iter().map(|c| c.1).reduce(f64::min) {
+                // The state at the earliest zero: RK4 again from the start of the step over the
+                // located fraction (no interpolation error in the state the impact sees).
+                let (mut xe, mut ve) = (x.clone(), v.clone());
+                if first > 0.0
+                    && !self.equations.rk4_step(
+                        &open,
+                        &ag,
+                        s.time,
+                        first * dt,
+                        &x,
+                        &v,
+                        &mut xe,
+                        &mut ve,
+                    )
                 {
                     return Err(LoopError::Singular(s.time));
                 }
-                // Closing: open DOFs whose depth reaches zero in the step.
-                let mut fresh = false;
-                let crossings: Vec<(usize, f64)> = (0..open.len())
-                    .filter_map(|i| {
-                        let (d0, d1) = (depth(open[i], x[i]), depth(open[i], x1[i]));
-                        if d1 > 0.0 || (d0 == 0.0 && d1 == 0.0) {
-                            return None;
-                        }
-                        let frac = if d0 > 0.0 { d0 / (d0 - d1) } else { 0.0 };
-                        // Moving away from closure at the located instant: it dipped through
-                        // zero and came back within the step.
-                        let rate = v[i] + frac * (v1[i] - v[i]);
-                        fresh |= d0 == 0.0 || depth(open[i], rate) > 0.0;
-                        Some((i, frac))
-                    })
-                    .collect();
-                if fresh && h > 1e-9 * dt {
-                    h *= 0.5;
-                    continue;
-                }
-                break crossings;
-            };
-            let dt = h;
-            if let Some(frac) = crossings.iter().map(|c| c.1).reduce(f64::min) {
-                s.time += frac * dt;
+                s.time += first * dt;
                 for i in 0..open.len() {
-                    s.phi[open[i]] = x[i] + frac * (x1[i] - x[i]);
-                    s.rates[open[i]] = v[i] + frac * (v1[i] - v[i]);
+                    s.phi[open[i]] = xe[i];
+                    s.rates[open[i]] = ve[i];
                 }
-                // Flagged: the crossing DOFs moving towards closure at the instant.
+                // Flagged: every DOF whose zero lies within `SIMULTANEOUS` of the earliest (a
+                // one-DOF mechanism's hinges reach zero at the same instant, SPEC §9; their
+                // located zeros differ by the interpolant's error only), and any DOF the
+                // integration to the instant left at or through zero.
+                let tolerance = SIMULTANEOUS * opts.dt;
                 let mut closing = vec![false; n];
-                for &(i, _) in &crossings {
-                    // At the refinement's floor, a rate at round-off moving away (a joint
-                    // that opened with zero acceleration) is taken as zero.
+                for i in 0..open.len() {
                     let d = open[i];
-                    let scale = v.iter().fold(0.0, |m: f64, r| m.max(r.abs()));
-                    if h <= 1e-9 * opts.dt && s.rates[d].abs() <= 1e-8 * scale {
-                        s.rates[d] = 0.0;
-                    }
-                    if depth(d, s.rates[d]) <= 0.0 {
-                        s.phi[open[i]] = 0.0;
-                        closing[open[i] % n] = true;
+                    let located = crossings
+                        .iter()
+                        .any(|&(j, sj)| j == i && (sj - first) * dt <= tolerance);
+                    if located || depth(d, s.phi[d]) <= 0.0 {
+                        s.phi[d] = 0.0;
+                        // At its zero a DOF moves towards closure; a rate moving away there is
+                        // the interpolant's round-off (a joint that opened with zero rate).
+                        if depth(d, s.rates[d]) > 0.0 {
+                            s.rates[d] = 0.0;
+                        }
+                        closing[d % n] = true;
                     }
                 }
-                // The closing angles set to zero leave the interpolated state off the closure
-                // by the other DOFs' share of the step: back onto it with the rest.
+                // The closing angles set to zero leave the state off the closure by their
+                // located zeros' error: back onto it with the rest.
                 let residual = if opts.project {
                     let rest: Vec<usize> =
                         open.iter().copied().filter(|&d| !closing[d % n]).collect();
@@ -480,7 +580,11 @@ impl<'a> Runner<'a> {
                     for &k in &joints {
                         s.statuses[k] = Status::Closed;
                     }
-                    if !project_rates(self.chain, &pose, &s.open_dofs(), &mut s.rates) {
+                    let open = s.open_dofs();
+                    // Fewer than four open joints: at rest (SPEC §9), settled below.
+                    if open.len() < 4 {
+                        s.rates.iter_mut().for_each(|r| *r = 0.0);
+                    } else if !project_rates(self.chain, &pose, &open, &mut s.rates) {
                         return Err(LoopError::Singular(s.time));
                     }
                     kinetic_after = self.kinetic(&s);
@@ -493,6 +597,9 @@ impl<'a> Runner<'a> {
                         },
                     );
                 } else {
+                    if self.keep_slow_closed(&mut s)? {
+                        kinetic_after = self.kinetic(&s);
+                    }
                     self.event(
                         &s,
                         LoopEventKind::Closing {
@@ -505,6 +612,13 @@ impl<'a> Runner<'a> {
                 let open_after = s.statuses.iter().filter(|st| st.is_open()).count();
                 if kinetic_after <= opts.settle_ratio * self.max_kinetic || open_after < 4 {
                     s.rates.iter_mut().for_each(|r| *r = 0.0);
+                    // At rest a hair from closure (no point displaced by more than
+                    // `SNAP_DISTANCE`: the round-off of the closure projection), the loop is
+                    // closed: the angles are set to zero.
+                    let largest = s.phi.iter().fold(0.0, |m: f64, p| m.max(p.abs()));
+                    if largest * self.reach <= SNAP_DISTANCE {
+                        s.phi.iter_mut().for_each(|p| *p = 0.0);
+                    }
                     for k in 0..n {
                         if s.phi[k] == 0.0 && s.phi[n + k] == 0.0 {
                             s.statuses[k] = Status::Closed;

@@ -11,16 +11,31 @@
 use super::equations::solve_in_place;
 use crate::chain::{Chain, ChainPose};
 
-/// Solves `[M_FF A_Fᵀ; A_F 0][y; μ] = [b; c]` for `y` (in `b`'s place). `mass` is the full
-/// `m × m` matrix, `a` the `3 × m` constraint rows, `open` the DOFs `F`. `false` when singular.
+/// `M_FF` (row-major `|F| × |F|`) of the DOFs `open` in the pose: only the entries needed, the
+/// same formula as [`Chain::mass_matrix`]'s (the same numbers to the bit).
+fn sub_mass(chain: &Chain, pose: &ChainPose, open: &[usize]) -> Vec<f64> {
+    let nf = open.len();
+    let mut out = vec![0.0; nf * nf];
+    for (i, &di) in open.iter().enumerate() {
+        for (j, &dj) in open.iter().enumerate().skip(i) {
+            let v = chain.mass_entry(pose, di, dj);
+            out[i * nf + j] = v;
+            out[j * nf + i] = v;
+        }
+    }
+    out
+}
+
+/// Solves `[M_FF A_Fᵀ; A_F 0][y; μ] = [b; c]` for `y` (in `b`'s place). `mass` is `M_FF`
+/// ([`sub_mass`]), `a` the `3 × m` constraint rows, `open` the DOFs `F`. `false` when singular.
 fn kkt(mass: &[f64], a: &[f64], m: usize, open: &[usize], b: &mut [f64], c: [f64; 3]) -> bool {
     let nf = open.len();
     let k = nf + 3;
     let mut mat = vec![0.0; k * k];
     let mut rhs = vec![0.0; k];
     for (i, &di) in open.iter().enumerate() {
-        for (j, &dj) in open.iter().enumerate() {
-            mat[i * k + j] = mass[di * m + dj];
+        for j in 0..nf {
+            mat[i * k + j] = mass[i * nf + j];
         }
         for r in 0..3 {
             mat[i * k + nf + r] = a[r * m + di];
@@ -41,13 +56,24 @@ fn kkt(mass: &[f64], a: &[f64], m: usize, open: &[usize], b: &mut [f64], c: [f64
 /// settling with the closure). Returns `false` (rates untouched) when the KKT system is singular.
 pub fn project_rates(chain: &Chain, pose: &ChainPose, open: &[usize], rates: &mut [f64]) -> bool {
     let m = chain.n_dofs();
-    let mass = chain.mass_matrix(pose);
     let g = chain.closure_matrix(pose);
+    // `M_F· v` over the moving DOFs only (the zero rates add nothing to the sums).
+    let moving: Vec<usize> = (0..m).filter(|&e| rates[e] != 0.0).collect();
     let mut b: Vec<f64> = open
         .iter()
-        .map(|&d| (0..m).map(|e| mass[d * m + e] * rates[e]).sum())
+        .map(|&d| {
+            (0..m)
+                .map(|e| {
+                    if moving.binary_search(&e).is_ok() {
+                        chain.mass_entry(pose, d, e) * rates[e]
+                    } else {
+                        0.0
+                    }
+                })
+                .sum()
+        })
         .collect();
-    if !kkt(&mass, &g, m, open, &mut b, [0.0; 3]) {
+    if !kkt(&sub_mass(chain, pose, open), &g, m, open, &mut b, [0.0; 3]) {
         return false;
     }
     rates.iter_mut().for_each(|r| *r = 0.0);
@@ -82,7 +108,6 @@ pub fn project_positions(
         if size(r) == 0.0 {
             break;
         }
-        let mass = chain.mass_matrix(&pose);
         let o = chain.joints()[chain.n_joints() - 1].centre;
         let moved = pose.support.apply(o);
         let mut jac = vec![0.0; 3 * m];
@@ -95,7 +120,16 @@ pub fn project_positions(
         let mut free: Vec<usize> = open.to_vec();
         let trial = loop {
             let mut dx = vec![0.0; free.len()];
-            if free.len() < 3 || !kkt(&mass, &jac, m, &free, &mut dx, [-r[0], -r[1], -r[2]]) {
+            if free.len() < 3
+                || !kkt(
+                    &sub_mass(chain, &pose, &free),
+                    &jac,
+                    m,
+                    &free,
+                    &mut dx,
+                    [-r[0], -r[1], -r[2]],
+                )
+            {
                 break None;
             }
             let mut trial = phi.to_vec();

@@ -36,6 +36,13 @@ pub struct LoopOptions {
     /// gravity gives in one step at the chain's reach `L` (a rebound slower than this lasts
     /// about one step: the fixed step cannot resolve it).
     pub lock_rate: Option<f64>,
+    /// Short flights: a joint an impact opens whose flight, predicted from its rate `ω` and the
+    /// acceleration `α` just after the impact (`2ω/|α|`, the flight under constant `α`), is
+    /// shorter than this many steps is kept closed, as a joint opened slower than
+    /// [`LoopOptions::lock_rate`] always is (0: only the lock rate). Faster than the step, such
+    /// a flight's angle (`ω²/2|α|`, below `|α| dt²/8`) is beyond what the fixed step resolves,
+    /// and it vanishes as `dt` does.
+    pub min_flight: f64,
 }
 
 impl Default for LoopOptions {
@@ -52,6 +59,7 @@ impl Default for LoopOptions {
             project: true,
             lock_loss: 1e-6,
             lock_rate: None,
+            min_flight: 0.0,
         }
     }
 }
