@@ -36,6 +36,11 @@ pub struct LoopOptions {
     /// gravity gives in one step at the chain's reach `L` (a rebound slower than this lasts
     /// about one step: the fixed step cannot resolve it).
     pub lock_rate: Option<f64>,
+    /// Stop early at the first step at or after this time (s) at which the loop is closed and
+    /// at rest. The caller states that the motion from then on stays inside the accelerations
+    /// the closed loop resists (e.g. a record after its last exceedance of `λ g`): the loop can
+    /// then never move again, so the rest of the run is known (exact). `None`: run to the end.
+    pub quiet_after: Option<f64>,
 }
 
 impl Default for LoopOptions {
@@ -52,6 +57,7 @@ impl Default for LoopOptions {
             project: true,
             lock_loss: 1e-6,
             lock_rate: None,
+            quiet_after: None,
         }
     }
 }
