@@ -153,3 +153,30 @@ fn arch_oas_on_a_small_grid() {
         assert!(!o.check(0.5 / m.f).violations.is_empty());
     }
 }
+
+/// The cost of single runs on the bundled record (R = 5 m) for 8 and 20 voussoirs (docs/arches.md
+/// 3b): `cargo test --release --lib arch_run_cost -- --ignored --nocapture`.
+#[test]
+#[ignore]
+fn arch_run_cost() {
+    let record = bundled_record();
+    for n in [8, 20] {
+        let on = onset(n);
+        let sweep = ArchSweepOptions {
+            shape: shape(n),
+            ..ArchSweepOptions::default()
+        };
+        for level in [1.5, 2.0, 3.0, 5.0] {
+            let t = std::time::Instant::now();
+            let run = arch_record_run(&record, &on, level, 5.0, &sweep);
+            let wall = t.elapsed().as_secs_f64();
+            match run {
+                Ok(r) => println!(
+                    "N = {n}, level {level}: collapsed {}, {} events, {:.3} s simulated, {wall:.2} s wall",
+                    r.collapsed, r.events, r.simulated_time
+                ),
+                Err(e) => println!("N = {n}, level {level}: failed ({e}), {wall:.2} s wall"),
+            }
+        }
+    }
+}
