@@ -1,4 +1,4 @@
-//! Spectra of voussoir arches (issue 15, item 5): the overturning curve (OC) of an arch under
+//! Spectra of voussoir arches (issue 15, item 5; the OC in `arch_oc.rs`): the overturning curve (OC) of an arch under
 //! pulses and the overturning acceleration spectrum (OAS) of an arch for a record, through the
 //! loop driver ([`crate::driver::simulate_loop`]). *Unsafe* is the loop driver's collapse (the
 //! mechanism past its point of no return, `docs/arches.md` 2b).
@@ -13,19 +13,19 @@
 //! mechanism of limit analysis, DeJong's one-DOF mechanism): with `u` the mechanism's rate
 //! direction at the onset (the opening model's acceleration at `λ (1 + 10⁻⁶)`), the mechanism
 //! coordinate `s` (`v = ṡ u`, `u` scaled so that `s` is DeJong's `θ`, the rotation of the
-//! first segment about its hinge A, the first open joint in chain order) of the closed arch at rest obeys `s̈ = −(p²/g) (a_g + λ g)` with
-//! `p² = g |uᵀ ∂q/∂a_g| / (uᵀ M u)`: the equation of a slender block at rest (`θ̈ = −(p²/g)
+//! first segment about its hinge A, the first open joint in chain order) of the closed arch at
+//! rest obeys `s̈ = −(p²/g) (a_g + λ g)` with `p² = g |uᵀ ∂q/∂a_g| / (uᵀ M u)`: the equation of a slender block at rest (`θ̈ = −(p²/g)
 //! (a_g + a_p,min)`, `cos α ≈ 1`). It scales as `√(g/R)`: `p = p₁ / √R`, `p₁` its value at
 //! `R = 1 m`.
 //!
 //! Early stops (both exact): a scaled record whose peak stays at or below `λ g` never moves the
-//! arch (no run); a run stops once the arch is closed and at rest after the last exceedance ([`LoopOptions::quiet_after`]: the closed arch resists every `|a_g| ≤ λ g` — the
+//! arch (no run); a run stops once the arch is closed and at rest after the last exceedance
+//! ([`LoopOptions::quiet_after`]: the closed arch resists every `|a_g| ≤ λ g` — the
 //! resisted accelerations form an interval, each mechanism's power being linear in `a_g` — so it
 //! never moves again). No energy bound is used: the collapse of a multi-DOF mechanism has no
 //! barrier height computed here.
 
 use super::oas::{exceedance_window, linear_levels, log_sizes, OasLevel, OasPoint};
-use super::overturning_curve::PulseShape;
 use super::sweep::map_indexed;
 use super::{invalid, Progress, SpectraError, TimeStep};
 use crate::chain::arch::VoussoirArch;
@@ -220,7 +220,7 @@ impl Default for ArchSweepOptions {
 }
 
 impl ArchSweepOptions {
-    fn validate(&self) -> Result<(), SpectraError> {
+    pub(super) fn validate(&self) -> Result<(), SpectraError> {
         self.time_step.validate()?;
         non_negative("tail", self.tail)?;
         positive("shape.thickness_ratio", self.shape.thickness_ratio)?;
@@ -229,7 +229,7 @@ impl ArchSweepOptions {
     }
 
     /// The loop options of one run.
-    fn run(&self, dt: f64, duration: f64, quiet_after: Option<f64>) -> LoopOptions {
+    pub(super) fn run(&self, dt: f64, duration: f64, quiet_after: Option<f64>) -> LoopOptions {
         LoopOptions {
             dt,
             duration,
@@ -256,7 +256,7 @@ pub struct ArchRun {
 }
 
 impl ArchRun {
-    const NEVER_MOVES: ArchRun = ArchRun {
+    pub(super) const NEVER_MOVES: ArchRun = ArchRun {
         collapsed: false,
         simulated: false,
         events: 0,
@@ -314,7 +314,7 @@ pub fn arch_record_run(
     run_loop(&chain, &motion, &run)
 }
 
-fn run_loop(
+pub(super) fn run_loop(
     chain: &Chain,
     motion: &dyn GroundMotion,
     run: &LoopOptions,
@@ -328,28 +328,6 @@ fn run_loop(
         simulated_time: out.state.time,
         peak_angle: out.peak_angle,
     })
-}
-
-/// The arch of radius `radius` under the pulse `shape(level · λ g, t_p)`, from rest.
-pub fn arch_pulse_run(
-    pulse: PulseShape,
-    onset: &ArchOnset,
-    level: f64,
-    t_p: f64,
-    radius: f64,
-    options: &ArchSweepOptions,
-) -> Result<ArchRun, SpectraError> {
-    if level <= 1.0 {
-        return Ok(ArchRun::NEVER_MOVES);
-    }
-    let g = options.simulation.gravity;
-    let excitation =
-        crate::ground::excitation::Excitation::Pulse(pulse.pulse(level * onset.lambda * g, t_p)?);
-    let p = onset.p(radius);
-    let dt = options.time_step.dt(None, Some(t_p), p);
-    let run = options.run(dt, excitation.end_time() + options.tail / p, None);
-    let chain = options.shape.chain(radius)?;
-    run_loop(&chain, &excitation, &run)
 }
 
 /// Options of an arch OAS.
@@ -427,7 +405,7 @@ pub struct ArchFailure {
 }
 
 impl ArchRunCounts {
-    fn add(&mut self, r: &ArchRun, level: f64, radius: f64) {
+    pub(super) fn add(&mut self, r: &ArchRun, level: f64, radius: f64) {
         if r.collapsed {
             self.collapses.push(ArchCollapse {
                 level,
@@ -530,103 +508,6 @@ pub fn arch_oas(
         sizes: options.sizes.clone(),
         levels,
         gravity: sim.gravity,
-        runs,
-    })
-}
-
-/// The overturning curve of one arch: collapse on a grid of pulse durations `t_p` (rows) and
-/// levels `a_p / (λ g)` (columns).
-#[derive(Clone, Debug, PartialEq)]
-pub struct ArchOc {
-    pub pulse: PulseShape,
-    pub shape: ArchShape,
-    pub radius: f64,
-    pub onset: ArchOnset,
-    pub gravity: f64,
-    pub t_p: Vec<f64>,
-    pub levels: Vec<f64>,
-    /// `collapsed[i * levels.len() + j]` (`false` also where the run failed: see
-    /// `runs.failures`).
-    pub collapsed: Vec<bool>,
-    pub runs: ArchRunCounts,
-}
-
-impl ArchOc {
-    /// `p` of the arch (1/s).
-    pub fn p(&self) -> f64 {
-        self.onset.p(self.radius)
-    }
-
-    /// For each `t_p`, the smallest level that collapses the arch (`None`: none).
-    pub fn envelope(&self) -> Vec<Option<f64>> {
-        let n = self.levels.len();
-        (0..self.t_p.len())
-            .map(|i| (0..n).find(|&j| self.collapsed[i * n + j]))
-            .map(|j| j.map(|j| self.levels[j]))
-            .collect()
-    }
-}
-
-/// The OC of the arch of radius `radius` for `pulse`, parallel over `t_p`. `levels` ascending.
-pub fn arch_overturning_curve(
-    pulse: PulseShape,
-    radius: f64,
-    t_p: &[f64],
-    levels: &[f64],
-    options: &ArchSweepOptions,
-    progress: Option<Progress<'_>>,
-) -> Result<ArchOc, SpectraError> {
-    options.validate()?;
-    positive("radius", radius)?;
-    all_positive("t_p", t_p)?;
-    all_positive("levels", levels)?;
-    let sim = &options.simulation;
-    let onset = arch_onset(&options.shape, sim.gravity, &sim.model)?;
-    let rows = map_indexed(t_p.len(), |i| {
-        let row: Result<Vec<Result<ArchRun, ArchFailure>>, SpectraError> = levels
-            .iter()
-            .map(
-                |&l| match arch_pulse_run(pulse, &onset, l, t_p[i], radius, options) {
-                    Ok(r) => Ok(Ok(r)),
-                    Err(SpectraError::Loop(message)) => Ok(Err(ArchFailure {
-                        level: l,
-                        radius: t_p[i],
-                        message,
-                    })),
-                    Err(e) => Err(e),
-                },
-            )
-            .collect();
-        if let Some(p) = progress {
-            p();
-        }
-        row
-    });
-    let mut collapsed = Vec::with_capacity(t_p.len() * levels.len());
-    let mut runs = ArchRunCounts::default();
-    for (i, row) in rows.into_iter().enumerate() {
-        for (j, r) in row?.into_iter().enumerate() {
-            match r {
-                Ok(r) => {
-                    runs.add(&r, levels[j], t_p[i]);
-                    collapsed.push(r.collapsed);
-                }
-                Err(f) => {
-                    runs.failures.push(f);
-                    collapsed.push(false);
-                }
-            }
-        }
-    }
-    Ok(ArchOc {
-        pulse,
-        shape: options.shape,
-        radius,
-        onset,
-        gravity: sim.gravity,
-        t_p: t_p.to_vec(),
-        levels: levels.to_vec(),
-        collapsed,
         runs,
     })
 }

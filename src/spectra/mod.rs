@@ -34,6 +34,7 @@
 //! event locator).
 
 mod arch;
+mod arch_oc;
 #[cfg(feature = "serde")]
 pub mod arch_report;
 mod band;
@@ -51,10 +52,10 @@ mod time_step;
 mod transformed;
 
 pub use arch::{
-    arch_oas, arch_onset, arch_overturning_curve, arch_pulse_run, arch_record_run, ArchCollapse,
-    ArchFailure, ArchOas, ArchOasOptions, ArchOc, ArchOnset, ArchRun, ArchRunCounts, ArchShape,
-    ArchSweepOptions, ArchT1Check,
+    arch_oas, arch_onset, arch_record_run, ArchCollapse, ArchFailure, ArchOas, ArchOasOptions,
+    ArchOnset, ArchRun, ArchRunCounts, ArchShape, ArchSweepOptions, ArchT1Check,
 };
+pub use arch_oc::{arch_overturning_curve, arch_pulse_run, ArchOc};
 pub use band::{t1_band, Perturbation, T1Band};
 pub use hull::TransformedHull;
 pub use oas::{
