@@ -14,7 +14,7 @@ mod output;
 mod plot;
 mod progress;
 
-use commands::{design, oas, oc, simulate, suite, t1, thesis, tp};
+use commands::{arch, design, oas, oc, simulate, suite, t1, thesis, tp};
 
 /// The impact and opening models allocate a few small vectors per event, and sweeps of
 /// event-heavy records spent a quarter of their time in glibc's allocator; with mimalloc the OAS
@@ -63,6 +63,10 @@ enum Command {
         override_usage = "rocking suite [OPTIONS] RECORD...\n       rocking suite --merge FILE.json... [--json] [--svg PREFIX] [--csv PREFIX]"
     )]
     Suite(suite::SuiteArgs),
+    /// Spectra of a voussoir arch (loop driver): OAS of a record, OC of a pulse; level
+    /// a_p / (λ g), size the radius at fixed t/R, embrace angle and voussoirs.
+    #[command(subcommand)]
+    Arch(arch::Arch),
     /// Pier width (Eq. 23, 24) and the Eq. 31 check.
     #[command(subcommand)]
     Design(design::Design),
@@ -81,6 +85,7 @@ fn main() -> ExitCode {
         Command::T1(a) => t1::run(a),
         Command::Tp(a) => tp::run(a),
         Command::Suite(a) => suite::run(a),
+        Command::Arch(a) => a.run(),
         Command::Design(d) => d.run(),
         Command::Bench(b) => b.run(),
     };

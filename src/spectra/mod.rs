@@ -33,6 +33,10 @@
 //! its band over equivalent perturbations (half the step, grids shifted by half a cell, the other
 //! event locator).
 
+mod arch;
+mod arch_oc;
+#[cfg(feature = "serde")]
+pub mod arch_report;
 mod band;
 mod hull;
 mod oas;
@@ -47,6 +51,11 @@ mod sweep;
 mod time_step;
 mod transformed;
 
+pub use arch::{
+    arch_oas, arch_onset, arch_record_run, ArchCollapse, ArchFailure, ArchOas, ArchOasOptions,
+    ArchOnset, ArchRun, ArchRunCounts, ArchShape, ArchSweepOptions, ArchT1Check,
+};
+pub use arch_oc::{arch_overturning_curve, arch_pulse_run, ArchOc};
 pub use band::{t1_band, Perturbation, T1Band};
 pub use hull::TransformedHull;
 pub use oas::{
@@ -92,6 +101,9 @@ pub enum SpectraError {
     /// A time history failed.
     #[error("simulation: {0}")]
     Driver(#[from] DriverError),
+    /// A time history of a closed chain (an arch) failed.
+    #[error("arch simulation: {0}")]
+    Loop(String),
 }
 
 fn invalid(field: &'static str, reason: impl Into<String>) -> SpectraError {
@@ -115,3 +127,6 @@ fn at_least_one_block(n_blocks: usize) -> Result<(), InvalidValue> {
 
 #[cfg(test)]
 mod tests;
+
+#[cfg(test)]
+mod tests_arch;

@@ -310,7 +310,11 @@ impl GroundMotion for ScaledRecord<'_> {
 /// Times of the sample before the first one and of the sample after the last one whose scaled
 /// absolute value reaches `threshold` (`None`: the column never lifts off). With linear
 /// interpolation `|a| < threshold` outside that window.
-fn exceedance_window(record: &Record, factor: f64, threshold: f64) -> Option<(f64, f64)> {
+pub(super) fn exceedance_window(
+    record: &Record,
+    factor: f64,
+    threshold: f64,
+) -> Option<(f64, f64)> {
     let limit = threshold * (1.0 - 1e-9);
     let hit = |a: &f64| (factor * a).abs() >= limit;
     let first = record.samples.iter().position(hit)?;

@@ -1,5 +1,6 @@
 //! One module per command of `rocking`.
 
+pub mod arch;
 pub mod design;
 pub mod oas;
 pub mod oc;

@@ -26,7 +26,7 @@ pub enum Shape {
 }
 
 impl Shape {
-    fn pulse(self) -> PulseShape {
+    pub fn pulse(self) -> PulseShape {
         match self {
             Shape::HalfSine => PulseShape::half_sine(),
             Shape::FullSine => PulseShape::full_sine(),

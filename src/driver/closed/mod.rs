@@ -446,6 +446,11 @@ impl<'a> Runner<'a> {
             let reference = at_rest
                 && s.phi.iter().all(|&p| p == 0.0)
                 && !s.statuses.iter().any(|st| st.is_open());
+            // The caller's early stop (`LoopOptions::quiet_after`): closed at rest in a motion
+            // that stays inside what the closed loop resists, it never moves again.
+            if reference && opts.quiet_after.is_some_and(|tq| s.time >= tq) {
+                break;
+            }
             if reference && self.resisted.is_none() {
                 self.resisted = Some(self.resisted_interval(&s)?);
             }

@@ -43,6 +43,11 @@ pub struct LoopOptions {
     /// a flight's angle (`ω²/2|α|`, below `|α| dt²/8`) is beyond what the fixed step resolves,
     /// and it vanishes as `dt` does.
     pub min_flight: f64,
+    /// Stop early at the first step at or after this time (s) at which the loop is closed and
+    /// at rest. The caller states that the motion from then on stays inside the accelerations
+    /// the closed loop resists (e.g. a record after its last exceedance of `λ g`): the loop can
+    /// then never move again, so the rest of the run is known (exact). `None`: run to the end.
+    pub quiet_after: Option<f64>,
 }
 
 impl Default for LoopOptions {
@@ -60,6 +65,7 @@ impl Default for LoopOptions {
             lock_loss: 1e-6,
             lock_rate: None,
             min_flight: 0.0,
+            quiet_after: None,
         }
     }
 }
