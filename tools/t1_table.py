@@ -254,7 +254,8 @@ if band:
         lo, hi = b["t1_range"]
         return (hi - lo) / b["t1"]
     w("")
-    w("## t₁'s band on the 100 records (issue 14 item 3)\n")
+    nb = sum(f in band for f in list(ff) + list(nf))
+    w(f"## t₁'s band on {nb} of the {len(ff) + len(nf)} records (issue 14 item 3)\n")
     w("`rocking t1 RECORD... --band --json`: t₁ over five spectra a careful analyst would call "
       "equivalent (as computed, half the time step, the level grid and the size grid each shifted by "
       "half a cell, the other event locator; docs/spectra.md); width = (max − min) / nominal t₁; the "
@@ -263,7 +264,7 @@ if band:
     w("|---|---:|---:|---:|---|---:|---:|---:|---:|")
     for name, keys in [("far field", [f for f in ff if f in band]), ("near field", [f for f in nf if f in band]),
                        ("all", [f for f in list(ff) + list(nf) if f in band])]:
-        if not keys:
+        if not keys or (name == "all" and len(keys) in (sum(f in band for f in ff), sum(f in band for f in nf))):
             continue
         ws = sorted(width(band[f]) for f in keys)
         worst = max(keys, key=lambda f: width(band[f]))
@@ -272,6 +273,11 @@ if band:
         w(f"| {name} | {len(keys)} | {100 * statistics.median(ws):.1f} % | {100 * q90:.1f} % | "
           f"{100 * ws[-1]:.1f} % ({index.get(worst, {}).get('thesis_id') or worst.removesuffix('.AT2')}) | "
           f"{sum(x > 0.10 for x in ws)} | {sum(x > 0.20 for x in ws)} | {statistics.median(cr):.3f} | {cr[-1]:.3f} |")
+    if nb < len(ff) + len(nf):
+        w("")
+        w(f"Not run with `--band` (no CPU left on the shared machine): {len(ff) + len(nf) - nb} records"
+          + (" (the near field)" if not any(f in band for f in nf) else "") + ". Their half step alone "
+          "(one of the band's members) is in docs/spectra.md, \"Time step and convergence of t₁\".")
     ffb = [f for f in ff if f in band]
     if ffb:
         ins = sum(band[f]["t1_range"][0] <= thesis[index[f]["thesis_id"]]["t1"] <= band[f]["t1_range"][1] for f in ffb)
