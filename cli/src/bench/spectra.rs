@@ -44,8 +44,9 @@ pub struct SpectraBenchArgs {
     /// The exact Lagrangian equations (velocity terms) instead of thesis Eq. 6.
     #[arg(long)]
     pub lagrangian: bool,
-    /// With --lagrangian and several blocks: the column's energy-bound stop (unproven; with
-    /// --compare each spectrum is checked against full runs).
+    /// With --lagrangian and several blocks: force the column's energy-bound stop (the default
+    /// where it is certified: 2 or 3 equal blocks at H/B 12; unproven elsewhere; with --compare
+    /// each spectrum is checked against full runs).
     #[arg(long = "column-bound", requires = "lagrangian")]
     pub column_bound: bool,
 }
@@ -150,7 +151,12 @@ pub fn run(args: &SpectraBenchArgs) -> Result<(), String> {
             "thesis Eq. 6"
         },
         if args.column_bound {
-            ", column energy-bound stop"
+            ", column energy-bound stop (forced)"
+        } else if args.blocks > 1
+            && args.lagrangian
+            && rocking::driver::column_stop_is_certified(args.blocks, options.slenderness)
+        {
+            ", column energy-bound stop (certified)"
         } else {
             ""
         }
