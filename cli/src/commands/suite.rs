@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use clap::Args;
-use rocking::spectra::report::{OasReport, SuiteReport};
+use rocking::spectra::report::{LevelReport, OasReport, SuiteReport};
 use rocking::spectra::suite::Violations;
 use rocking::spectra::{self, Oas};
 use serde::Deserialize;
@@ -247,31 +247,28 @@ fn summary(r: &SuiteReport) -> String {
 /// The CSV files: (name, text).
 fn csv(r: &SuiteReport) -> Vec<(&'static str, String)> {
     let opt = |x: Option<f64>| x.map_or(String::new(), |v| v.to_string());
+    // One row per level of an OAS, after the key of its curve (record name or fractile).
+    let level_rows = |key: &str, levels: &[LevelReport]| -> String {
+        levels
+            .iter()
+            .map(|l| {
+                format!(
+                    "{key},{},{},{},{}\n",
+                    l.level.level,
+                    opt(l.size),
+                    opt(l.p),
+                    opt(l.f)
+                )
+            })
+            .collect()
+    };
     let mut records = String::from("record,level,size,p,f\n");
     for o in &r.records {
-        for l in &o.levels {
-            records += &format!(
-                "{},{},{},{},{}\n",
-                o.record,
-                l.level.level,
-                opt(l.size),
-                opt(l.p),
-                opt(l.f)
-            );
-        }
+        records += &level_rows(&o.record, &o.levels);
     }
     let mut characteristic = String::from("fractile,level,size,p,f\n");
     for c in &r.characteristic {
-        for l in &c.oas.levels {
-            characteristic += &format!(
-                "{},{},{},{},{}\n",
-                c.fractile,
-                l.level.level,
-                opt(l.size),
-                opt(l.p),
-                opt(l.f)
-            );
-        }
+        characteristic += &level_rows(&c.fractile.to_string(), &c.oas.levels);
     }
     let mut hulls = String::from("record,level,f,f_normalised\n");
     for h in &r.hulls {
