@@ -12,7 +12,7 @@ use std::time::Instant;
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use rocking::contact::drums::Drums;
 use rocking::contact::friction::{ContactProblem, JointContacts, JointStatus};
-use rocking::contact::simulation::{simulate, DrumOptions, DrumRecording};
+use rocking::contact::simulation::{simulate, DrumOptions};
 use rocking::ground::excitation::Excitation;
 use rocking::ground::records::{read_at2, synthetic_record, Record, SYNTHETIC_SEED};
 use rocking::model::column::{Block, Column};
@@ -32,13 +32,7 @@ fn record() -> (String, Record) {
 fn options(dt: f64) -> DrumOptions {
     DrumOptions {
         dt,
-        duration: 30.0,
-        friction: 0.5,
-        record: DrumRecording {
-            history_every: None,
-            events: false,
-        },
-        ..DrumOptions::default()
+        ..DrumOptions::quiet(30.0, 0.5, 1)
     }
 }
 

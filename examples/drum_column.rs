@@ -4,13 +4,19 @@
 //!
 //! ```text
 //! cargo run --release --example drum_column -- --drums 10 --width 1 --height 1 \
-//!     --record RECORD.AT2 --pga 4 --mu 0.5 --dt 0.001 [--duration 30] [--impacts 1]
+//!     --record RECORD.AT2 --pga 4 --mu 0.5 --dt 0.001 [--duration 30] [--impacts 1] \
+//!     [--scheme moreau|auto]
 //! ```
+//!
+//! `--scheme auto`: the automatic scheme (`rocking::contact::auto`): the event-driven driver
+//! where events are few, Moreau–Jean where they crowd.
 
 use std::path::PathBuf;
 use std::time::Instant;
 
-use rocking::contact::simulation::{simulate, DrumOptions, DrumRecording, DrumStop};
+use rocking::contact::auto::{self, AutoOptions};
+use rocking::contact::simulation::{simulate, DrumOptions, DrumStop};
+use rocking::driver::SimulationOptions;
 use rocking::ground::excitation::Excitation;
 use rocking::ground::records::read_at2;
 use rocking::model::column::{Block, Column};
@@ -21,6 +27,7 @@ fn main() {
     let mut record: Option<PathBuf> = None;
     let mut duration: Option<f64> = None;
     let mut impacts = 1u32;
+    let mut automatic = false;
     while let Some(a) = args.next() {
         let v = args.next().unwrap_or_else(|| panic!("{a} needs a value"));
         match a.as_str() {
@@ -33,6 +40,7 @@ fn main() {
             "--dt" => dt = v.parse().unwrap(),
             "--duration" => duration = Some(v.parse().unwrap()),
             "--impacts" => impacts = v.parse().unwrap(),
+            "--scheme" => automatic = v == "auto",
             other => panic!("unknown argument {other}"),
         }
     }
@@ -40,19 +48,20 @@ fn main() {
     let duration = duration.unwrap_or(rec.duration());
     let motion = Excitation::record(rec.scaled_to_pga(pga).unwrap()).unwrap();
     let col = Column::new(vec![Block::rectangle(w, h, 2500.0 * w * h); n]).unwrap();
-    let mut opts = DrumOptions {
+    let opts = DrumOptions {
         dt,
-        duration,
-        friction: mu,
-        record: DrumRecording {
-            history_every: None,
-            events: false,
-        },
-        ..DrumOptions::default()
+        ..DrumOptions::quiet(duration, mu, impacts)
     };
-    opts.scheme.n_impacts = impacts;
     let t0 = Instant::now();
-    let out = simulate(&col, &motion, &opts, None).unwrap();
+    let out = if automatic {
+        let mut driver = SimulationOptions::default();
+        driver.physics.friction = mu;
+        driver.physics.model.n_impacts = impacts;
+        let rules = AutoOptions::for_step(dt);
+        auto::simulate(&col, &motion, &driver, &opts, &rules, None).unwrap()
+    } else {
+        simulate(&col, &motion, &opts, None).unwrap()
+    };
     let wall = t0.elapsed().as_secs_f64();
     let max_abs = |v: &[f64]| v.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
     let list = |v: &[f64]| {
@@ -66,7 +75,7 @@ fn main() {
         _ => "null".to_string(),
     };
     println!(
-        "{{\"code\": \"rocking\", \"drums\": {n}, \"width\": {w}, \"height\": {h}, \"pga\": {pga}, \"mu\": {mu}, \"dt\": {dt}, \"t_end\": {:.6}, \"stop\": \"{:?}\", \"overturned\": {}, \"overturned_joint\": {joint}, \"peak_rotation\": {:.9e}, \"peak_rotations\": [{}], \"peak_top_displacement\": {:.9e}, \"residual_slip\": {:.9e}, \"residual_slips\": [{}], \"peak_slip\": {:.9e}, \"energy_error\": {:.3e}, \"energy\": {{\"ground_work\": {:.6e}, \"potential_change\": {:.6e}, \"kinetic_change\": {:.6e}, \"impact\": {:.6e}, \"friction\": {:.6e}, \"persistent_contact\": {:.6e}, \"projection\": {:.6e}}}, \"counters\": \"{:?}\", \"wall_s\": {wall:.6}}}",
+        "{{\"code\": \"rocking\", \"drums\": {n}, \"width\": {w}, \"height\": {h}, \"pga\": {pga}, \"mu\": {mu}, \"dt\": {dt}, \"t_end\": {:.6}, \"stop\": \"{:?}\", \"overturned\": {}, \"overturned_joint\": {joint}, \"peak_rotation\": {:.9e}, \"peak_rotations\": [{}], \"peak_top_displacement\": {:.9e}, \"residual_slip\": {:.9e}, \"residual_slips\": [{}], \"peak_slip\": {:.9e}, \"energy_error\": {:.3e}, \"energy\": {{\"ground_work\": {:.6e}, \"potential_change\": {:.6e}, \"kinetic_change\": {:.6e}, \"impact\": {:.6e}, \"friction\": {:.6e}, \"persistent_contact\": {:.6e}, \"projection\": {:.6e}}}, \"counters\": \"{:?}\", \"switches\": {}, \"switch_log\": \"{}\", \"time_event_driven\": {:.4}, \"wall_s\": {wall:.6}}}",
         out.t_end,
         out.stop,
         out.overturned,
@@ -85,5 +94,12 @@ fn main() {
         out.energy.accounts.persistent_contact,
         out.energy.accounts.projection,
         out.counters,
+        out.switches.len(),
+        out.switches
+            .iter()
+            .map(|s| format!("{:.3} s to {} ({})", s.t, s.to.name(), s.why))
+            .collect::<Vec<_>>()
+            .join("; "),
+        out.time_event_driven,
     );
 }

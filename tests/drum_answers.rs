@@ -8,7 +8,7 @@
 
 use std::path::Path;
 
-use rocking::contact::simulation::{simulate, DrumOptions, DrumOutcome, DrumRecording};
+use rocking::contact::simulation::{simulate, DrumOptions, DrumOutcome};
 use rocking::ground::excitation::Excitation;
 use rocking::ground::records::{read_at2, synthetic_record, Record, SYNTHETIC_SEED};
 use rocking::model::column::{Block, Column};
@@ -16,17 +16,7 @@ use rocking::model::column::{Block, Column};
 fn run(n: usize, w: f64, h: f64, rec: Record, mu: f64, duration: f64, impacts: u32) -> DrumOutcome {
     let column = Column::new(vec![Block::rectangle(w, h, 2500.0 * w * h); n]).unwrap();
     let motion = Excitation::record(rec).unwrap();
-    let mut opts = DrumOptions {
-        dt: 1e-3,
-        duration,
-        friction: mu,
-        record: DrumRecording {
-            history_every: None,
-            events: false,
-        },
-        ..DrumOptions::default()
-    };
-    opts.scheme.n_impacts = impacts;
+    let opts = DrumOptions::quiet(duration, mu, impacts);
     simulate(&column, &motion, &opts, None).unwrap()
 }
 

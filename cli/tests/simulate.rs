@@ -183,6 +183,46 @@ fn a_drum_scene_rocks_slides_and_flies_and_writes_slips() {
 }
 
 #[test]
+fn an_auto_scene_writes_one_record_with_its_scheme_switches() {
+    // The bundled sliding column with `"scheme": "auto"`: the driver until contacts crowd.
+    let dir = fresh_dir("drums_auto");
+    std::fs::create_dir_all(&dir).unwrap();
+    let text = std::fs::read_to_string(scenes().join("drums_sliding_column.json")).unwrap();
+    let mut spec: serde_json::Value = serde_json::from_str(&text).unwrap();
+    spec["scheme"] = "auto".into();
+    if let Some(p) = spec["excitation"]["path"].as_str() {
+        let abs = scenes().join(p);
+        spec["excitation"]["path"] = abs.display().to_string().into();
+    }
+    let scene = dir.join("auto.json");
+    std::fs::write(&scene, spec.to_string()).unwrap();
+    let out = dir.join("out");
+    let run = simulate(&scene, &out, None);
+    assert!(run.ok, "{}", run.stderr);
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["scheme"], "auto");
+    let t_end = summary["t_end"].as_f64().unwrap();
+    let ed = summary["time_event_driven"].as_f64().unwrap();
+    assert!(ed > 0.0 && ed <= t_end, "{summary}");
+    let switches = summary["scheme_switches"].as_u64().unwrap();
+    let events = std::fs::read_to_string(out.join("events.jsonl")).unwrap();
+    let lines: Vec<serde_json::Value> = events
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .filter(|e: &serde_json::Value| e["kind"] == "scheme_switch")
+        .collect();
+    assert_eq!(lines.len() as u64, switches);
+    assert!(switches >= 1, "{summary}");
+    for e in &lines {
+        assert!(e["from"] != e["to"], "{e}");
+        assert!(e["why"].is_string(), "{e}");
+    }
+    assert_eq!(lines[0]["from"], "event_driven");
+    assert_eq!(summary["stop_reason"], "duration", "{summary}");
+}
+
+#[test]
 fn a_drum_scene_with_a_bad_field_fails_naming_it() {
     let dir = fresh_dir("bad_drum_scene");
     std::fs::create_dir_all(&dir).unwrap();

@@ -55,7 +55,7 @@ pub fn _simulate<'py>(
     // outputs; until the package exposes them, refuse rather than run the rigid driver instead.
     if scene.contact.is_some() {
         return Err(value_error(
-            "scheme: scenes whose joints slide or fly (scheme \"moreau\", or on_sliding / on_tension) \
+            "scheme: scenes whose joints slide or fly (scheme \"moreau\" or \"auto\", or on_sliding / on_tension) \
              run the contact scheme, \
              which rocking.simulate does not support yet (use `rocking simulate`)",
         ));

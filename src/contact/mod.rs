@@ -22,12 +22,16 @@
 //!   column at rest; [`accounts`]: the energy accounts and work counters.
 //! - [`simulation`]: a whole run: joint modes, events, stops, slips, energy; its options are
 //!   [`options`].
+//! - [`auto`]: the automatic scheme: the event-driven driver where events are few, this scheme
+//!   where they crowd, the state handed between them (`handover`).
 
 pub mod accounts;
 pub mod active_set;
+pub mod auto;
 pub mod drums;
 pub mod fallback;
 pub mod friction;
+pub(crate) mod handover;
 pub mod landing;
 pub mod lemke;
 pub mod moreau;

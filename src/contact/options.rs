@@ -115,6 +115,24 @@ fn bad(field: &'static str, value: impl fmt::Debug, rule: &'static str) -> DrumO
 }
 
 impl DrumOptions {
+    /// The options of a quiet run (nothing kept: no history, no events) of `duration` seconds at
+    /// `dt` = 1 ms, friction `mu` at every joint, sliding and flight allowed, `n_impacts`
+    /// consecutive impacts: what the drum benchmarks and tests run.
+    pub fn quiet(duration: f64, mu: f64, n_impacts: u32) -> DrumOptions {
+        let mut options = DrumOptions {
+            dt: 1e-3,
+            duration,
+            friction: mu,
+            record: DrumRecording {
+                history_every: None,
+                events: false,
+            },
+            ..DrumOptions::default()
+        };
+        options.scheme.n_impacts = n_impacts;
+        options
+    }
+
     /// Checks every field; the error names it.
     pub fn validate(&self, column: &Column) -> Result<(), DrumOptionError> {
         let n = column.n_interfaces();

@@ -52,6 +52,10 @@ pub enum DrumEventKind {
     Landing,
     /// The part above a joint tipped beyond its pivot.
     Overturned,
+    /// The automatic scheme handed the run from one scheme to the other
+    /// ([`DrumOutcome::switches`] says which way and why; `joint`: the joint concerned, else 0).
+    /// Not in [`DrumOutcome::event_counts`].
+    SchemeSwitch,
 }
 
 impl DrumEventKind {
@@ -65,6 +69,7 @@ impl DrumEventKind {
             DrumEventKind::LiftOff => "lift_off",
             DrumEventKind::Landing => "landing",
             DrumEventKind::Overturned => "overturned",
+            DrumEventKind::SchemeSwitch => "scheme_switch",
         }
     }
 }
@@ -193,6 +198,50 @@ pub struct DrumOutcome {
     pub modes_end: Vec<JointMode>,
     /// Work counters.
     pub counters: StepCounters,
+    /// The scheme switches of the automatic scheme ([`super::auto`]; empty otherwise).
+    pub switches: Vec<SchemeSwitch>,
+    /// Simulated time spent in the event-driven driver (s; 0 unless [`super::auto`]).
+    pub time_event_driven: f64,
+}
+
+/// The two schemes of a run.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SchemePart {
+    /// The thesis's event-driven driver ([`crate::driver`]).
+    EventDriven,
+    /// Moreau–Jean time stepping ([`super::moreau`]).
+    Moreau,
+}
+
+impl SchemePart {
+    /// The name in outputs.
+    pub fn name(self) -> &'static str {
+        match self {
+            SchemePart::EventDriven => "event_driven",
+            SchemePart::Moreau => "moreau",
+        }
+    }
+}
+
+/// A hand-over of the automatic scheme ([`super::auto`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SchemeSwitch {
+    /// Time (s).
+    pub t: f64,
+    /// The scheme that ran before.
+    pub from: SchemePart,
+    /// The scheme that runs after.
+    pub to: SchemePart,
+    /// Why: `events_crowd`, `sliding`, `tension`, `event_cap` (to Moreau–Jean), `calm` (back).
+    pub why: &'static str,
+    /// Kinetic energy before and after the state was mapped (J; equal to round-off to Moreau–Jean;
+    /// back, the closed joints' relative rates are dropped).
+    pub kinetic_before: f64,
+    /// See `kinetic_before`.
+    pub kinetic_after: f64,
+    /// Handed back: the largest joint slip (m), within the tolerance, that the driver's
+    /// kinematics (faces aligned) drops; the slips restart from zero.
+    pub slip_dropped: f64,
 }
 
 /// Why a run failed.
@@ -253,182 +302,276 @@ pub fn simulate(
     column: &Column,
     motion: &dyn GroundMotion,
     options: &DrumOptions,
-    mut progress: Option<&mut dyn FnMut(f64)>,
+    progress: Option<&mut dyn FnMut(f64)>,
 ) -> Result<DrumOutcome, DrumError> {
     options.validate(column).map_err(DrumError::Option)?;
-    let n = column.n_interfaces();
-    let mut st = Stepper::new(column, options.mu(n), options.scheme);
-    if let Some(a) = &options.initial_angles {
-        let mut phi = vec![0.0; 2 * n];
-        for (k, &x) in a.iter().enumerate() {
-            if x < 0.0 {
-                phi[k] = x;
-            } else if x > 0.0 {
-                phi[n + k] = x;
+    let mut run = MoreauRun::new(column, options);
+    let stop = match run.steps(motion, options, progress, None)? {
+        Paused::Stopped(stop) => stop,
+        Paused::Until => unreachable!("no pause rule"),
+    };
+    Ok(run.finish(stop))
+}
+
+/// Why [`MoreauRun::steps`] returned.
+pub(crate) enum Paused {
+    /// The run stopped (the duration done, or a stop).
+    Stopped(DrumStop),
+    /// The pause rule held after a step.
+    Until,
+}
+
+/// What a pause rule sees after a step: the stepper, the joints' modes and whether each slips,
+/// and the time of the last event.
+pub(crate) type PauseRule<'r> = &'r mut dyn FnMut(&Stepper, &[JointMode], &[bool], f64) -> bool;
+
+/// A run of the scheme: the stepper, the joints' modes, and the record.
+pub(crate) struct MoreauRun {
+    pub st: Stepper,
+    pub mode: Vec<JointMode>,
+    slipping: Vec<bool>,
+    next_mode: Vec<JointMode>,
+    next_slipping: Vec<bool>,
+    pub out: DrumOutcome,
+    potential0: f64,
+    kinetic0: f64,
+    /// Time of the last event pushed (s).
+    pub last_event: f64,
+}
+
+impl MoreauRun {
+    /// At the start: straight, or released from the options' initial angles; the first sample.
+    pub fn new(column: &Column, options: &DrumOptions) -> MoreauRun {
+        let n = column.n_interfaces();
+        let mut st = Stepper::new(column, options.mu(n), options.scheme);
+        if let Some(a) = &options.initial_angles {
+            let mut phi = vec![0.0; 2 * n];
+            for (k, &x) in a.iter().enumerate() {
+                if x < 0.0 {
+                    phi[k] = x;
+                } else if x > 0.0 {
+                    phi[n + k] = x;
+                }
             }
+            let mut q = vec![0.0; 3 * n];
+            let mut v = vec![0.0; 3 * n];
+            st.drums()
+                .from_interface_state(column, &phi, &vec![0.0; 2 * n], &mut q, &mut v);
+            st.set_state(0.0, &q, &v);
         }
-        let mut q = vec![0.0; 3 * n];
-        let mut v = vec![0.0; 3 * n];
-        st.drums()
-            .from_interface_state(column, &phi, &vec![0.0; 2 * n], &mut q, &mut v);
-        st.set_state(0.0, &q, &v);
-    }
-    let potential0 = st.potential_energy();
-    let kinetic0 = st.kinetic_energy();
-    let mut mode = vec![JointMode::Closed; n];
-    let mut slipping = vec![false; n];
-    modes(&st, &mut mode, &mut slipping);
-    let mut next_mode = mode.clone();
-    let mut next_slipping = slipping.clone();
-    let mut out = DrumOutcome {
-        stop: DrumStop::Duration,
-        t_end: 0.0,
-        overturned: false,
-        peak_rotation: vec![0.0; n],
-        peak_slip: vec![0.0; n],
-        residual_slip: vec![0.0; n],
-        peak_top_displacement: 0.0,
-        energy: DrumEnergy::default(),
-        event_counts: [0; 7],
-        events: Vec::new(),
-        history: options.record.history_every.map(|_| DrumHistory {
-            n,
-            ..DrumHistory::default()
-        }),
-        modes_end: Vec::new(),
-        counters: StepCounters::default(),
-    };
-    let record_state = |st: &Stepper, h: &mut DrumHistory| {
-        h.t.push(st.t);
-        h.q.extend_from_slice(&st.q);
-        h.slip.extend(st.geometry.iter().map(|g| g.slip));
-    };
-    if let Some(h) = &mut out.history {
-        record_state(&st, h);
-    }
-    let push = |out: &mut DrumOutcome, t: f64, kind: DrumEventKind, joint: usize| {
-        let i = KINDS.iter().position(|&k| k == kind).unwrap_or(0);
-        out.event_counts[i] += 1;
-        if options.record.events {
-            out.events.push(DrumEvent { t, kind, joint });
-        }
-    };
-    let n_steps = (options.duration / options.dt).round().max(0.0) as u64;
-    let mut next_progress = 0.01;
-    let mut stop: Option<DrumStop> = None;
-    for i in 0..n_steps {
-        // The last step lands exactly on the duration.
-        let t_target = if i + 1 == n_steps {
-            options.duration
-        } else {
-            (i + 1) as f64 * options.dt
+        let potential0 = st.potential_energy();
+        let kinetic0 = st.kinetic_energy();
+        let mut mode = vec![JointMode::Closed; n];
+        let mut slipping = vec![false; n];
+        modes(&st, &mut mode, &mut slipping);
+        let next_mode = mode.clone();
+        let next_slipping = slipping.clone();
+        let out = DrumOutcome {
+            stop: DrumStop::Duration,
+            t_end: 0.0,
+            overturned: false,
+            peak_rotation: vec![0.0; n],
+            peak_slip: vec![0.0; n],
+            residual_slip: vec![0.0; n],
+            peak_top_displacement: 0.0,
+            energy: DrumEnergy::default(),
+            event_counts: [0; 7],
+            events: Vec::new(),
+            history: options.record.history_every.map(|_| DrumHistory {
+                n,
+                ..DrumHistory::default()
+            }),
+            modes_end: Vec::new(),
+            counters: StepCounters::default(),
+            switches: Vec::new(),
+            time_event_driven: 0.0,
         };
-        let h = t_target - st.t;
-        match st.step(h, motion) {
-            Ok(()) => {}
-            Err(StepError::SlidOff(k)) => {
-                stop = Some(DrumStop::SlidOff { joint: k });
+        let mut run = MoreauRun {
+            st,
+            mode,
+            slipping,
+            next_mode,
+            next_slipping,
+            out,
+            potential0,
+            kinetic0,
+            last_event: 0.0,
+        };
+        run.sample();
+        run
+    }
+
+    /// Keeps the state in the history (when kept).
+    pub fn sample(&mut self) {
+        if let Some(h) = &mut self.out.history {
+            h.t.push(self.st.t);
+            h.q.extend_from_slice(&self.st.q);
+            h.slip.extend(self.st.geometry.iter().map(|g| g.slip));
+        }
+    }
+
+    /// After the state was set from outside (a handover): the joints' modes afresh, no events.
+    pub fn remode(&mut self) {
+        modes(&self.st, &mut self.mode, &mut self.slipping);
+    }
+
+    pub fn push(&mut self, options: &DrumOptions, t: f64, kind: DrumEventKind, joint: usize) {
+        let i = KINDS.iter().position(|&k| k == kind).unwrap_or(0);
+        self.out.event_counts[i] += 1;
+        self.last_event = t;
+        if options.record.events {
+            self.out.events.push(DrumEvent { t, kind, joint });
+        }
+    }
+
+    /// Steps on the grid `i dt` from the stepper's time to a stop, or until `until` holds after
+    /// a step.
+    pub fn steps(
+        &mut self,
+        motion: &dyn GroundMotion,
+        options: &DrumOptions,
+        mut progress: Option<&mut dyn FnMut(f64)>,
+        mut until: Option<PauseRule<'_>>,
+    ) -> Result<Paused, DrumError> {
+        let n = self.mode.len();
+        let n_steps = (options.duration / options.dt).round().max(0.0) as u64;
+        // The first grid point after the stepper's time (0 from the start).
+        let mut first = (self.st.t / options.dt).floor().max(0.0) as u64;
+        while first < n_steps && (first + 1) as f64 * options.dt <= self.st.t + 1e-9 * options.dt {
+            first += 1;
+        }
+        let mut next_progress = 0.01;
+        let mut stop: Option<DrumStop> = None;
+        for i in first..n_steps {
+            let st = &mut self.st;
+            // The last step lands exactly on the duration.
+            let t_target = if i + 1 == n_steps {
+                options.duration
+            } else {
+                (i + 1) as f64 * options.dt
+            };
+            let h = t_target - st.t;
+            match st.step(h, motion) {
+                Ok(()) => {}
+                Err(StepError::SlidOff(k)) => {
+                    stop = Some(DrumStop::SlidOff { joint: k });
+                }
+                Err(StepError::Contact) => return Err(DrumError::Contact { t: st.t }),
             }
-            Err(StepError::Contact) => return Err(DrumError::Contact { t: st.t }),
-        }
-        for imp in &st.impacts {
-            push(&mut out, imp.t, DrumEventKind::Impact, imp.joint);
-        }
-        modes(&st, &mut next_mode, &mut next_slipping);
-        for k in 0..n {
-            let (a, b) = (mode[k], next_mode[k]);
-            if a != b {
-                use JointMode::*;
-                let kind = match (a, b) {
-                    (Closed, RockingLeft | RockingRight) => Some(DrumEventKind::Opening),
-                    (Flying, _) => Some(DrumEventKind::Landing),
-                    (_, Flying) => Some(DrumEventKind::LiftOff),
-                    // A located impact was pushed already.
-                    (RockingLeft | RockingRight, _) => {
-                        if st.impacts.iter().any(|m| m.joint == k) {
-                            None
-                        } else {
-                            Some(DrumEventKind::Impact)
+            for m in 0..self.st.impacts.len() {
+                let imp = self.st.impacts[m];
+                self.push(options, imp.t, DrumEventKind::Impact, imp.joint);
+            }
+            modes(&self.st, &mut self.next_mode, &mut self.next_slipping);
+            let t = self.st.t;
+            for k in 0..n {
+                let (a, b) = (self.mode[k], self.next_mode[k]);
+                if a != b {
+                    use JointMode::*;
+                    let kind = match (a, b) {
+                        (Closed, RockingLeft | RockingRight) => Some(DrumEventKind::Opening),
+                        (Flying, _) => Some(DrumEventKind::Landing),
+                        (_, Flying) => Some(DrumEventKind::LiftOff),
+                        // A located impact was pushed already.
+                        (RockingLeft | RockingRight, _) => {
+                            if self.st.impacts.iter().any(|m| m.joint == k) {
+                                None
+                            } else {
+                                Some(DrumEventKind::Impact)
+                            }
+                        }
+                        _ => None,
+                    };
+                    if let Some(kind) = kind {
+                        self.push(options, t, kind, k);
+                        if kind == DrumEventKind::LiftOff && options.on_tension == OnTension::Stop {
+                            stop = stop.or(Some(DrumStop::Tension { joint: k }));
                         }
                     }
-                    _ => None,
-                };
-                if let Some(kind) = kind {
-                    push(&mut out, st.t, kind, k);
-                    if kind == DrumEventKind::LiftOff && options.on_tension == OnTension::Stop {
-                        stop = stop.or(Some(DrumStop::Tension { joint: k }));
+                }
+                if self.slipping[k] != self.next_slipping[k] {
+                    let kind = if self.next_slipping[k] {
+                        DrumEventKind::SlipStart
+                    } else {
+                        DrumEventKind::SlipStop
+                    };
+                    self.push(options, t, kind, k);
+                    if self.next_slipping[k] && options.on_sliding == OnSliding::Stop {
+                        stop = stop.or(Some(DrumStop::Sliding { joint: k }));
                     }
                 }
             }
-            if slipping[k] != next_slipping[k] {
-                let kind = if next_slipping[k] {
-                    DrumEventKind::SlipStart
-                } else {
-                    DrumEventKind::SlipStop
-                };
-                push(&mut out, st.t, kind, k);
-                if next_slipping[k] && options.on_sliding == OnSliding::Stop {
-                    stop = stop.or(Some(DrumStop::Sliding { joint: k }));
+            std::mem::swap(&mut self.mode, &mut self.next_mode);
+            std::mem::swap(&mut self.slipping, &mut self.next_slipping);
+            let (st, out) = (&self.st, &mut self.out);
+            // Peaks.
+            for j in 0..n {
+                out.peak_rotation[j] = out.peak_rotation[j].max(st.q[3 * j + 2].abs());
+            }
+            for (k, g) in st.geometry.iter().enumerate() {
+                out.peak_slip[k] = out.peak_slip[k].max(g.slip.abs());
+            }
+            out.peak_top_displacement = out.peak_top_displacement.max(st.q[3 * (n - 1)].abs());
+            // Overturning: static tipping of the part above a rocking joint, or a fallen drum.
+            if stop.is_none() {
+                if options.continue_until_fallen {
+                    if let Some(j) =
+                        (0..n).find(|&j| st.q[3 * j + 2].abs() >= 0.5 * std::f64::consts::PI)
+                    {
+                        stop = Some(DrumStop::Fallen { drum: j });
+                    }
+                } else if let Some(k) = tipped(st, &self.mode) {
+                    self.push(options, t, DrumEventKind::Overturned, k);
+                    stop = Some(DrumStop::Overturned { joint: k });
+                }
+            }
+            if self.out.history.is_some() {
+                let every = options.record.history_every.unwrap_or(1) as u64;
+                if (i + 1) % every == 0 || i + 1 == n_steps || stop.is_some() {
+                    self.sample();
+                }
+            }
+            if let Some(stop) = stop {
+                return Ok(Paused::Stopped(stop));
+            }
+            if let Some(p) = progress.as_deref_mut() {
+                let f = (i + 1) as f64 / n_steps as f64;
+                if f >= next_progress {
+                    p(f);
+                    next_progress = f + 0.01;
+                }
+            }
+            if let Some(rule) = until.as_deref_mut() {
+                if i + 1 < n_steps && rule(&self.st, &self.mode, &self.slipping, self.last_event) {
+                    return Ok(Paused::Until);
                 }
             }
         }
-        std::mem::swap(&mut mode, &mut next_mode);
-        std::mem::swap(&mut slipping, &mut next_slipping);
-        // Peaks.
-        for j in 0..n {
-            out.peak_rotation[j] = out.peak_rotation[j].max(st.q[3 * j + 2].abs());
-        }
+        Ok(Paused::Stopped(DrumStop::Duration))
+    }
+
+    /// The outcome of the run stopped for `stop`.
+    pub fn finish(mut self, stop: DrumStop) -> DrumOutcome {
+        let st = &self.st;
+        let out = &mut self.out;
+        out.stop = stop;
+        out.overturned = matches!(
+            out.stop,
+            DrumStop::Overturned { .. } | DrumStop::Fallen { .. } | DrumStop::SlidOff { .. }
+        );
+        out.t_end = st.t;
         for (k, g) in st.geometry.iter().enumerate() {
-            out.peak_slip[k] = out.peak_slip[k].max(g.slip.abs());
+            out.residual_slip[k] = g.slip;
         }
-        out.peak_top_displacement = out.peak_top_displacement.max(st.q[3 * (n - 1)].abs());
-        // Overturning: static tipping of the part above a rocking joint, or a fallen drum.
-        if stop.is_none() {
-            if options.continue_until_fallen {
-                if let Some(j) =
-                    (0..n).find(|&j| st.q[3 * j + 2].abs() >= 0.5 * std::f64::consts::PI)
-                {
-                    stop = Some(DrumStop::Fallen { drum: j });
-                }
-            } else if let Some(k) = tipped(&st, &mode) {
-                push(&mut out, st.t, DrumEventKind::Overturned, k);
-                stop = Some(DrumStop::Overturned { joint: k });
-            }
-        }
-        if let Some(h) = &mut out.history {
-            let every = options.record.history_every.unwrap_or(1) as u64;
-            if (i + 1) % every == 0 || i + 1 == n_steps || stop.is_some() {
-                record_state(&st, h);
-            }
-        }
-        if stop.is_some() {
-            break;
-        }
-        if let Some(p) = progress.as_deref_mut() {
-            let f = (i + 1) as f64 / n_steps as f64;
-            if f >= next_progress {
-                p(f);
-                next_progress = f + 0.01;
-            }
-        }
+        out.energy = DrumEnergy {
+            potential_change: st.potential_energy() - self.potential0,
+            kinetic_change: st.kinetic_energy() - self.kinetic0,
+            accounts: st.energy,
+        };
+        out.modes_end = self.mode;
+        out.counters = st.counters;
+        self.out
     }
-    out.stop = stop.unwrap_or(DrumStop::Duration);
-    out.overturned = matches!(
-        out.stop,
-        DrumStop::Overturned { .. } | DrumStop::Fallen { .. } | DrumStop::SlidOff { .. }
-    );
-    out.t_end = st.t;
-    for (k, g) in st.geometry.iter().enumerate() {
-        out.residual_slip[k] = g.slip;
-    }
-    out.energy = DrumEnergy {
-        potential_change: st.potential_energy() - potential0,
-        kinetic_change: st.kinetic_energy() - kinetic0,
-        accounts: st.energy,
-    };
-    out.modes_end = mode;
-    out.counters = st.counters;
-    Ok(out)
 }
 
 /// The lowest rocking joint whose part above has its centre of mass beyond the pivot, along the

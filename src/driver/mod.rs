@@ -71,6 +71,7 @@ pub mod reference;
 mod run;
 mod state;
 mod step;
+pub mod switch;
 #[cfg(test)]
 mod tests;
 

@@ -8,20 +8,52 @@ use super::problem::Problem;
 use super::recorder::Recorder;
 use super::state::State;
 use super::step::Step;
+use super::switch::{Crowding, CrowdingRule, InterfaceState};
 use super::{DriverError, Outcome, StopReason};
 
 /// Runs `problem` from its initial state to a stop; `progress` hears the fraction of the
 /// duration done (about every 1 %).
 pub(crate) fn run<C: ChainDynamics>(
-    mut problem: Problem<'_, C>,
+    problem: Problem<'_, C>,
     progress: Option<&mut dyn FnMut(f64)>,
 ) -> Result<Outcome, DriverError> {
+    Ok(run_segment(problem, progress, None, None)?.0)
+}
+
+/// How a segment of a run ended: its outcome, the state it stopped at, and whether the crowding
+/// rule stopped it (the outcome's stop reason is then a placeholder,
+/// [`StopReason::TooManyEvents`]).
+pub(crate) type SegmentEnd = (Outcome, State, bool);
+
+/// [`run`] from `start` (`None`: released at rest at time 0, as [`run`]) until a stop or, with
+/// `crowding`, until the events crowd (docs/multidrum.md, "The automatic scheme"). Without
+/// `start` and `crowding` the same run as [`run`], bit for bit.
+pub(crate) fn run_segment<C: ChainDynamics>(
+    mut problem: Problem<'_, C>,
+    progress: Option<&mut dyn FnMut(f64)>,
+    start: Option<&InterfaceState>,
+    crowding: Option<CrowdingRule>,
+) -> Result<SegmentEnd, DriverError> {
     let mut run = Run::new(&problem);
+    if let Some(s) = start {
+        run.state = State::resumed(s);
+    }
+    let mut crowding = crowding.map(Crowding::new);
     let mut progress = Progress::new(progress, problem.opts.stopping.duration);
     // Released at rest: the column stands, or opens at once (the reaction test fails).
     run.start(&mut problem)?;
     loop {
         progress.at(run.state.t());
+        if let Some(c) = crowding.as_mut() {
+            if c.observe(run.state.t(), run.recorder.events_counted()) {
+                let Run {
+                    state, recorder, ..
+                } = run;
+                let outcome =
+                    recorder.finish(StopReason::TooManyEvents, &state, &mut problem.chain);
+                return Ok((outcome, state, true));
+            }
+        }
         let stop = match run.stop_before_step(&mut problem) {
             Some(reason) => Some(reason),
             None => {
@@ -40,7 +72,8 @@ pub(crate) fn run<C: ChainDynamics>(
             let Run {
                 state, recorder, ..
             } = run;
-            return Ok(recorder.finish(reason, &state, &mut problem.chain));
+            let outcome = recorder.finish(reason, &state, &mut problem.chain);
+            return Ok((outcome, state, false));
         }
     }
 }
@@ -73,7 +106,7 @@ impl Run {
 
     fn start<C: ChainDynamics>(&mut self, problem: &mut Problem<C>) -> Result<(), DriverError> {
         let state = &mut self.state;
-        state.ag = problem.ag(0.0);
+        state.ag = problem.ag(state.t());
         let (_, potential) = problem.chain.energy(&state.open, &state.phi, &state.rates);
         state.refresh(&mut problem.chain)?;
         self.recorder.start(state, potential);

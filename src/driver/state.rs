@@ -8,6 +8,7 @@
 //! ([`super::chain::ChainDynamics`]) wherever it is needed.
 
 use super::chain::ChainDynamics;
+use super::switch::InterfaceState;
 use super::DriverError;
 use crate::model::configuration::{open_dofs, Status};
 
@@ -90,6 +91,35 @@ impl State {
         }
         state.open.extend(open_dofs(&state.statuses));
         state
+    }
+
+    /// The state `s` handed over by another scheme ([`super::switch`]), its accelerations,
+    /// margins and power still to be evaluated ([`State::refresh`]).
+    pub fn resumed(s: &InterfaceState) -> State {
+        let m = s.phi.len();
+        let mut state = State {
+            clock: Clock::at(s.t),
+            ag: 0.0,
+            phi: s.phi.clone(),
+            rates: s.rates.clone(),
+            acc: vec![0.0; m],
+            margin: vec![f64::NEG_INFINITY; m],
+            power: 0.0,
+            statuses: s.statuses.clone(),
+            open: Vec::with_capacity(m),
+        };
+        state.open.extend(open_dofs(&state.statuses));
+        state
+    }
+
+    /// The state as another scheme receives it.
+    pub fn interface_state(&self) -> InterfaceState {
+        InterfaceState {
+            t: self.t(),
+            phi: self.phi.clone(),
+            rates: self.rates.clone(),
+            statuses: self.statuses.clone(),
+        }
     }
 
     /// Time (s).

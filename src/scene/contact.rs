@@ -5,9 +5,12 @@
 //! "friction": 0.7,            (or one μ per joint: [0.7, 0.6, 0.6])
 //! "on_sliding": "slide",      ("stop", the default: the thesis's driver stops at the first slip)
 //! "on_tension": "fly",        ("stop", the default: it stops at the first tensile joint)
-//! "scheme": "moreau"          ("event_driven" or "moreau"; default: "moreau" when a joint may
-//!                              slide or fly, "event_driven" otherwise)
+//! "scheme": "moreau"          ("event_driven", "moreau" or "auto"; default: "moreau" when a
+//!                              joint may slide or fly, "event_driven" otherwise)
 //! ```
+//! `"auto"`: the event-driven driver where events are few, Moreau–Jean where they crowd
+//! (`crate::contact::auto`, docs/multidrum.md "The automatic scheme"); the driver's own settings
+//! (integrator, locator, solver, exact velocity terms) apply to its parts.
 //! With the defaults a scene runs on the event-driven driver exactly as before these fields.
 
 use serde::Deserialize;
@@ -37,6 +40,8 @@ pub enum SchemeChoice {
     EventDriven,
     /// Moreau–Jean time stepping with Coulomb friction and flight (`src/contact/`).
     Moreau,
+    /// The driver where events are few, Moreau–Jean where they crowd (`crate::contact::auto`).
+    Auto,
 }
 
 fn choice(field: &str, value: Option<&str>, allowed: [&str; 2]) -> Result<bool, SceneError> {
@@ -73,10 +78,11 @@ pub(super) fn scheme(spec: &SceneSpec) -> Result<SchemeChoice, SceneError> {
             false
         }
         Some("moreau") => true,
+        Some("auto") => return Ok(SchemeChoice::Auto),
         Some(other) => {
             return Err(err(
                 "scheme",
-                format!("unknown scheme {other:?} (event_driven, moreau)"),
+                format!("unknown scheme {other:?} (event_driven, moreau, auto)"),
             ))
         }
     };
@@ -112,6 +118,7 @@ pub(super) fn driver_friction(spec: &SceneSpec, default: f64) -> f64 {
     match &spec.friction {
         Some(FrictionSpec::All(mu)) => *mu,
         // Only with the Moreau scheme (checked in `scheme`); the driver's options are unused.
+        // Scheme "auto": the driver's parts take the smallest (they stop, hand over, at a slip).
         Some(FrictionSpec::PerJoint(mu)) => mu.iter().copied().fold(f64::INFINITY, f64::min),
         None => default,
     }
@@ -207,6 +214,9 @@ mod tests {
             (OnSliding::Stop, OnTension::Fly)
         );
         assert_eq!(c.joint_friction, Some(vec![0.5, 0.6]));
+        let s = parse(r#", "scheme": "auto", "on_sliding": "slide", "integrator": "rk4""#).unwrap();
+        assert!(s.auto.is_some());
+        assert_eq!(s.contact.unwrap().on_sliding, OnSliding::Slide);
         let s = parse(r#", "scheme": "moreau", "friction": 0.4"#).unwrap();
         let c = s.contact.unwrap();
         assert_eq!(

@@ -28,6 +28,7 @@ use serde::Deserialize;
 pub mod closed;
 mod contact;
 mod summary;
+use crate::contact::auto::AutoOptions;
 use crate::contact::simulation::DrumOptions;
 pub use closed::{LoopScene, LoopShape};
 pub use contact::{FrictionSpec, SchemeChoice};
@@ -176,7 +177,7 @@ pub struct SceneSpec {
     /// What a joint that would carry tension does: "stop" (default) or "fly".
     #[serde(default)]
     pub on_tension: Option<String>,
-    /// "event_driven" or "moreau" (default: "moreau" when a joint may slide or fly).
+    /// "event_driven", "moreau" or "auto" (default: "moreau" when a joint may slide or fly).
     #[serde(default)]
     pub scheme: Option<String>,
     #[serde(default)]
@@ -205,6 +206,9 @@ pub struct Scene {
     /// The contact scheme's options when the scene chose it (`src/contact/`); `None`: the
     /// event-driven driver runs the scene.
     pub contact: Option<DrumOptions>,
+    /// Scheme "auto": the rules of the hand-overs between `options` (the driver) and `contact`
+    /// (Moreau–Jean), both set; `None`: one scheme runs the whole scene.
+    pub auto: Option<AutoOptions>,
     pub output: OutputSpec,
 }
 
@@ -295,8 +299,9 @@ pub fn build(spec: SceneSpec, base: &Path, name: &str) -> Result<Scene, SceneErr
     let scheme = contact::scheme(&spec)?;
     let contact = match scheme {
         SchemeChoice::EventDriven => None,
-        SchemeChoice::Moreau => Some(contact::drum_options(&spec, &column)?),
+        SchemeChoice::Moreau | SchemeChoice::Auto => Some(contact::drum_options(&spec, &column)?),
     };
+    let auto = (scheme == SchemeChoice::Auto).then(|| AutoOptions::for_step(spec.dt));
     let integrator = match &spec.integrator {
         None => Integrator::default(),
         Some(IntegratorSpec::Name(n)) => match n.as_str() {
@@ -401,6 +406,7 @@ pub fn build(spec: SceneSpec, base: &Path, name: &str) -> Result<Scene, SceneErr
         excitation,
         options,
         contact,
+        auto,
         output: spec.output,
     })
 }

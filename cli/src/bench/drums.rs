@@ -18,7 +18,7 @@ use std::time::Instant;
 
 use clap::Args;
 use rayon::prelude::*;
-use rocking::contact::simulation::{simulate, DrumOptions, DrumRecording, DrumStop};
+use rocking::contact::simulation::{simulate, DrumOptions, DrumStop};
 use rocking::ground::excitation::Excitation;
 use rocking::ground::records::{read_at2, Record};
 use rocking::model::column::{Block, Column};
@@ -126,17 +126,7 @@ fn run_case(case: &Case, rec: &Record, dt: f64) -> Result<Run, String> {
     let duration = rec.duration();
     let opts = DrumOptions {
         dt,
-        duration,
-        friction: case.mu,
-        record: DrumRecording {
-            history_every: None,
-            events: false,
-        },
-        scheme: rocking::contact::moreau::SchemeOptions {
-            n_impacts: 2,
-            ..Default::default()
-        },
-        ..DrumOptions::default()
+        ..DrumOptions::quiet(duration, case.mu, 2)
     };
     let t0 = Instant::now();
     let out = simulate(&col, &motion, &opts, None).map_err(|e| e.to_string())?;

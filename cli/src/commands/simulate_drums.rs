@@ -1,6 +1,9 @@
 //! `rocking simulate` on a scene that chose the contact scheme (`on_sliding: "slide"`,
 //! `on_tension: "fly"` or `scheme: "moreau"`; docs/multidrum.md): Moreau–Jean time stepping of
-//! the column with Coulomb friction and flight at the joints.
+//! the column with Coulomb friction and flight at the joints; or `scheme: "auto"`: the
+//! event-driven driver where events are few and Moreau–Jean where they crowd, one record of the
+//! whole run (`scheme_switch` events with `from`, `to`, `why`; `scheme_switches` and
+//! `time_event_driven` in the summary).
 //!
 //! Writes `DIR/history.csv` (t; per drum its centre `x_k`, `y_k` relative to rest and its
 //! rotation `block_rotation_k`; per joint its slip `slip_k`), `DIR/events.jsonl` (`t`, `kind`:
@@ -15,7 +18,10 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use rocking::contact::simulation::{self, DrumHistory, DrumOutcome, DrumStop, JointMode};
+use rocking::contact::auto;
+use rocking::contact::simulation::{
+    self, DrumEventKind, DrumHistory, DrumOutcome, DrumStop, JointMode,
+};
 use rocking::ground::FnMotion;
 use rocking::scene::Scene;
 use serde::Serialize;
@@ -40,8 +46,19 @@ pub fn run(
     let bar = progress::bar(1000, "simulating");
     let mut report = |fraction: f64| bar.set_position((fraction * 1000.0) as u64);
     let started = Instant::now();
-    let outcome = simulation::simulate(&scene.column, &motion, options, Some(&mut report))
-        .map_err(|e| e.to_string())?;
+    let outcome = match &scene.auto {
+        Some(rules) => auto::simulate(
+            &scene.column,
+            &motion,
+            &scene.options,
+            options,
+            rules,
+            Some(&mut report),
+        )
+        .map_err(|e| e.to_string())?,
+        None => simulation::simulate(&scene.column, &motion, options, Some(&mut report))
+            .map_err(|e| e.to_string())?,
+    };
     let wall = started.elapsed().as_secs_f64();
     bar.finish_and_clear();
 
@@ -52,8 +69,18 @@ pub fn run(
     }
     if scene.output.events {
         let mut lines = String::new();
+        let mut switches = outcome.switches.iter();
         for e in &outcome.events {
-            let line = serde_json::json!({"t": e.t, "kind": e.kind.name(), "joint": e.joint});
+            let line = match (e.kind, e.kind == DrumEventKind::SchemeSwitch) {
+                (_, true) => match switches.next() {
+                    Some(s) => serde_json::json!({"t": e.t, "kind": e.kind.name(),
+                        "from": s.from.name(), "to": s.to.name(), "why": s.why,
+                        "kinetic_before": s.kinetic_before, "kinetic_after": s.kinetic_after,
+                        "slip_dropped": s.slip_dropped}),
+                    None => continue,
+                },
+                _ => serde_json::json!({"t": e.t, "kind": e.kind.name(), "joint": e.joint}),
+            };
             lines.push_str(&line.to_string());
             lines.push('\n');
         }
@@ -175,6 +202,11 @@ struct Summary<'a> {
     /// Events by kind.
     events: BTreeMap<&'static str, usize>,
     energy: Energy,
+    /// Scheme "auto": the hand-overs and the simulated time in the event-driven driver (s).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    scheme_switches: Option<usize>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    time_event_driven: Option<f64>,
     dt: f64,
     wall_time_s: f64,
 }
@@ -219,7 +251,11 @@ impl<'a> Summary<'a> {
             scene: path.display().to_string(),
             title: &scene.title,
             excitation: scene.excitation.describe(),
-            scheme: "moreau",
+            scheme: if scene.auto.is_some() {
+                "auto"
+            } else {
+                "moreau"
+            },
             overturned: o.overturned,
             t_end: o.t_end,
             impacts: o.event_counts[1],
@@ -242,6 +278,8 @@ impl<'a> Summary<'a> {
                 residual: e.residual(),
                 relative_residual: e.residual() / e.scale(),
             },
+            scheme_switches: scene.auto.map(|_| o.switches.len()),
+            time_event_driven: scene.auto.map(|_| o.time_event_driven),
             dt,
             wall_time_s: wall,
         }
