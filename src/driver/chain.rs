@@ -72,6 +72,12 @@ pub(crate) trait ChainDynamics: Equations {
     /// whatever moves, since the ground's power is `−a_g Σ m_j ẋ_j` and
     /// `|Σ m_j ẋ_j| ≤ √(M Σ m_j ẋ_j²) ≤ √(2 M T)` ([`super::StoppingOptions::stop_when_safe_column`]).
     fn column_growth_bound(&self) -> f64;
+    /// Whether the barrier lemmas behind the column stop are certified for this chain
+    /// ([`super::column_is_certified`]); the stop is then part of
+    /// [`super::StoppingOptions::stop_when_safe`].
+    fn barrier_certified(&self) -> bool {
+        false
+    }
 
     /// Assembles the models' input (mass matrix, loads) at a state; the next four calls use it.
     fn assemble(&mut self, statuses: &[Status], ag: f64, phi: &[f64], rates: &[f64]);

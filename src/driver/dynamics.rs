@@ -516,6 +516,10 @@ impl ChainDynamics for ColumnDynamics<'_> {
         (0.5 * self.masses.iter().sum::<f64>()).sqrt()
     }
 
+    fn barrier_certified(&self) -> bool {
+        super::barrier::column_is_certified(self.col)
+    }
+
     fn assemble(&mut self, statuses: &[Status], ag: f64, phi: &[f64], rates: &[f64]) {
         let mut mass = std::mem::take(&mut self.system_mass);
         let mut load = std::mem::take(&mut self.system_load);

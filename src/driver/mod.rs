@@ -56,6 +56,7 @@
 //! the closure `G v = 0`, several joints closing at once, no reaction test) implements the two
 //! traits of `chain.rs`; neither touches the integrators.
 
+mod barrier;
 mod chain;
 pub mod closed;
 mod dop853;
@@ -74,6 +75,10 @@ pub mod switch;
 #[cfg(test)]
 mod tests;
 
+pub use barrier::{
+    certify_column_barrier, column_is_certified, column_stop_is_certified, BarrierCertificate,
+    BarrierFailure, CERTIFIED_COLUMNS, CERTIFIED_EPSILON,
+};
 pub use closed::{simulate_loop, LoopOptions, LoopOutcome, LoopState};
 pub(crate) use options::RunOptions;
 pub use options::{

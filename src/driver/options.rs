@@ -165,9 +165,12 @@ pub struct StoppingOptions {
     /// `√E(t) + m R / √(2 I_P) · ∫_t^∞ |a_g| ≤ 0.9 √E_tip` (`E_tip`: the energy that lifts the
     /// centre of mass over the pivot, which static tipping needs), the block can never tip; the
     /// factor 0.9 leaves room for the integration error, so the verdict is the one the full run
-    /// would give. Needs [`crate::ground::GroundMotion::remaining_impulse`]; ignored for
-    /// columns of more than one block (thesis Eq. 6 does not conserve energy there) and with
-    /// `continue_until_fallen`. Checked every 16 steps. It proves only that the block will not
+    /// would give. Needs [`crate::ground::GroundMotion::remaining_impulse`]; ignored with
+    /// `continue_until_fallen`. Columns of more than one block: the stop of
+    /// `stop_when_safe_column`, with [`PhysicsOptions::exact_velocity_terms`] only (thesis Eq. 6
+    /// does not conserve energy there) and only where its barrier is certified
+    /// ([`crate::driver::column_is_certified`]: 2 or 3 equal blocks, H/B 3–12); otherwise
+    /// ignored. Checked every 16 steps. It proves only that the block will not
     /// tip: a sliding or tension stop that the rest of the run would have met is not reported
     /// (sweeps use infinite friction).
     pub stop_when_safe: bool,
@@ -176,11 +179,13 @@ pub struct StoppingOptions {
     /// away): stop with [`super::StopReason::CannotTip`] when
     /// `√E(t) + √(M/2) · ∫_t^∞ |a_g| ≤ 0.9 √E_tip`, `M` the total mass and `E_tip` the smallest
     /// potential energy of a rigid tipping mechanism of the straight column. The growth is
-    /// proven (`|Σ m_j ẋ_j| ≤ √(2 M T)`); that no non-rigid path tips the column with less
-    /// potential energy than `E_tip`, and that `V ≥ 0` before tipping, is **not proven** (see
-    /// docs/spectra.md, "Early stop of columns"): opt-in, and checked against full runs by
-    /// `rocking bench spectra --compare`. Ignored without the exact velocity terms (thesis
-    /// Eq. 6 does not conserve energy when several interfaces are open) and with
+    /// proven (`|Σ m_j ẋ_j| ≤ √(2 M T)`); that no path tips the column with less than
+    /// `0.999 E_tip` of potential energy, and that `V ≥ 0` before tipping, is certified by
+    /// [`crate::driver::certify_column_barrier`] for [`crate::driver::CERTIFIED_COLUMNS`] only
+    /// (see docs/spectra.md, "Early stop of columns"); there `stop_when_safe` already implies
+    /// it. This flag forces it on any column, where it is **not proven** (check it against full
+    /// runs with `rocking bench spectra --compare`). Ignored without the exact velocity terms
+    /// (thesis Eq. 6 does not conserve energy when several interfaces are open) and with
     /// `continue_until_fallen`.
     pub stop_when_safe_column: bool,
 }

@@ -316,11 +316,12 @@ fn oas_energy_bound_changes_nothing_on_shared_records() {
     }
 }
 
-/// The column's energy-bound stop ([`crate::driver::StoppingOptions::stop_when_safe_column`],
-/// exact Lagrangian equations) gives, at every point of a grid, the verdict of the whole run,
-/// for 2- and 3-block columns and 1 and 2 impacts on the bundled record; and it does stop runs
-/// (it is not vacuous). The bound is not proven for columns (docs/spectra.md): this is its
-/// check, with `rocking bench spectra --compare` on other records.
+/// The column's energy-bound stop (exact Lagrangian equations; part of the sweeps'
+/// `stop_when_safe` on the certified columns, [`crate::driver::column_is_certified`]) gives, at
+/// every point of a grid, the verdict of the whole run, for 2- and 3-block columns and 1 and 2
+/// impacts on the bundled record; and it does stop runs (it is not vacuous). Its barrier is
+/// certified (`driver::barrier`); this checks the rest of the argument end to end, as
+/// `rocking bench spectra --compare` does on other records.
 #[test]
 fn column_energy_bound_changes_no_verdict() {
     let record = bundled_record();
@@ -334,9 +335,12 @@ fn column_energy_bound_changes_no_verdict() {
         let sim = &mut grid.sweep.simulation;
         sim.physics.model.n_impacts = n_impacts;
         sim.physics.exact_velocity_terms = true;
-        sim.stopping.stop_when_safe_column = true;
+        assert!(sim.stopping.stop_when_safe && !sim.stopping.stop_when_safe_column);
+        assert!(crate::driver::column_is_certified(
+            &column_of_size(1.0, grid.slenderness, n_blocks).unwrap()
+        ));
         let mut full = grid.clone();
-        full.sweep.simulation.stopping.stop_when_safe_column = false;
+        full.sweep.simulation.stopping.stop_when_safe = false;
         let (mut unsafe_points, mut stopped) = (0, 0);
         for &level in &grid.levels {
             for &size in &grid.sizes {

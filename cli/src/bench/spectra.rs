@@ -3,7 +3,8 @@
 //! target of the issue (≤ 5 s per record on a 2-core machine). With `--compare`, each record is
 //! run a second time with every simulation run to its end (`--full-runs` of `rocking oas`): the
 //! speed ratio of the energy-bound stop measured in the same process, and a check that both
-//! spectra are identical.
+//! spectra are identical. Each OAS is reported with its wall and its CPU time (the process, every
+//! thread) and the load average: on a shared machine the CPU ratio is the steadier figure.
 
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -44,8 +45,9 @@ pub struct SpectraBenchArgs {
     /// The exact Lagrangian equations (velocity terms) instead of thesis Eq. 6.
     #[arg(long)]
     pub lagrangian: bool,
-    /// With --lagrangian and several blocks: the column's energy-bound stop (unproven; with
-    /// --compare each spectrum is checked against full runs).
+    /// With --lagrangian and several blocks: force the column's energy-bound stop (the default
+    /// where it is certified: 2 or 3 equal blocks at H/B 12; unproven elsewhere; with --compare
+    /// each spectrum is checked against full runs).
     #[arg(long = "column-bound", requires = "lagrangian")]
     pub column_bound: bool,
 }
@@ -57,8 +59,12 @@ struct Row {
     dt: f64,
     simulations: usize,
     seconds: f64,
+    /// CPU seconds of the process (every thread) over the OAS, where the OS tells.
+    cpu: Option<f64>,
     /// `(seconds, identical)` with full runs.
     full: Option<(f64, bool)>,
+    /// CPU seconds of the full runs.
+    full_cpu: Option<f64>,
     /// t₁ at the default step.
     t1: Option<f64>,
     /// `(seconds, t₁)` with the step scaled by `--dt-factor`.
@@ -73,10 +79,37 @@ fn bundled() -> Result<Record, String> {
     .map_err(|e| e.to_string())
 }
 
-fn timed_oas(record: &Record, options: &OasOptions) -> Result<(spectra::Oas, f64), String> {
-    let t0 = Instant::now();
+/// User plus system CPU time of this process, every thread (Linux `/proc/self/stat`, in clock
+/// ticks of 1/100 s, the kernel's fixed `USER_HZ`); `None` elsewhere. On a shared machine the
+/// wall time depends on the others' load, the CPU time much less.
+fn process_cpu_seconds() -> Option<f64> {
+    let stat = std::fs::read_to_string("/proc/self/stat").ok()?;
+    // The fields after the command name (which may hold spaces) in parentheses.
+    let rest = &stat[stat.rfind(')')? + 2..];
+    let fields: Vec<&str> = rest.split_whitespace().collect();
+    // utime and stime are fields 14 and 15 of the line, 12 and 13 after the name.
+    let ticks = fields.get(11)?.parse::<f64>().ok()? + fields.get(12)?.parse::<f64>().ok()?;
+    Some(ticks / 100.0)
+}
+
+/// The 1-, 5- and 15-minute load averages (Linux), for the report.
+fn load_average() -> Option<String> {
+    let s = std::fs::read_to_string("/proc/loadavg").ok()?;
+    Some(s.split_whitespace().take(3).collect::<Vec<_>>().join(" "))
+}
+
+/// An OAS with its wall and CPU seconds.
+fn timed_oas(
+    record: &Record,
+    options: &OasOptions,
+) -> Result<(spectra::Oas, f64, Option<f64>), String> {
+    let (t0, c0) = (Instant::now(), process_cpu_seconds());
     let oas = spectra::oas(record, options, None).map_err(|e| e.to_string())?;
-    Ok((oas, t0.elapsed().as_secs_f64()))
+    let cpu = match (c0, process_cpu_seconds()) {
+        (Some(a), Some(b)) => Some(b - a),
+        _ => None,
+    };
+    Ok((oas, t0.elapsed().as_secs_f64(), cpu))
 }
 
 /// Runs the benchmark and prints the report (Markdown) on stdout.
@@ -109,20 +142,21 @@ pub fn run(args: &SpectraBenchArgs) -> Result<(), String> {
     if let Some(f) = args.dt_factor {
         scaled_options.sweep.time_step = options.sweep.time_step.scaled(f);
     }
+    let load_before = load_average();
     let bar = progress::bar(records.len() as u64, "OAS");
     let mut rows = Vec::new();
     for record in &records {
         bar.set_message(record.name.clone());
-        let (oas, seconds) = timed_oas(record, &options)?;
-        let full = if args.compare {
-            let (whole, s) = timed_oas(record, &full_options)?;
-            Some((s, whole.levels == oas.levels))
+        let (oas, seconds, cpu) = timed_oas(record, &options)?;
+        let (full, full_cpu) = if args.compare {
+            let (whole, s, c) = timed_oas(record, &full_options)?;
+            (Some((s, whole.levels == oas.levels)), c)
         } else {
-            None
+            (None, None)
         };
         let scaled = match args.dt_factor {
             Some(_) => {
-                let (o, s) = timed_oas(record, &scaled_options)?;
+                let (o, s, _) = timed_oas(record, &scaled_options)?;
                 Some((s, o.t1()))
             }
             None => None,
@@ -133,7 +167,9 @@ pub fn run(args: &SpectraBenchArgs) -> Result<(), String> {
             dt: record.dt,
             simulations: oas.simulations(),
             seconds,
+            cpu,
             full,
+            full_cpu,
             t1: oas.t1(),
             scaled,
         });
@@ -150,12 +186,24 @@ pub fn run(args: &SpectraBenchArgs) -> Result<(), String> {
             "thesis Eq. 6"
         },
         if args.column_bound {
-            ", column energy-bound stop"
+            ", column energy-bound stop (forced)"
+        } else if args.blocks > 1
+            && args.lagrangian
+            && rocking::driver::column_stop_is_certified(args.blocks, options.slenderness)
+        {
+            ", column energy-bound stop (certified)"
         } else {
             ""
         }
     );
     let mut text = report(&rows, rayon::current_num_threads(), &setup);
+    if let (Some(before), Some(after)) = (&load_before, load_average()) {
+        let _ = writeln!(
+            text,
+            "Load average (1, 5, 15 min) before: {before}; after: {after} (a shared machine \
+             inflates wall times: compare the ratios, and the CPU times)."
+        );
+    }
     if let Some(f) = args.dt_factor {
         text.push_str(&scaled_report(&rows, f));
     }
@@ -210,12 +258,12 @@ fn report(rows: &[Row], threads: usize, setup: &str) -> String {
     let compare = rows.iter().any(|r| r.full.is_some());
     if compare {
         s.push_str(
-            "| record | duration (s) | dt (s) | simulations | wall (s) | full runs (s) | ratio | same OAS |\n\
-             |---|---:|---:|---:|---:|---:|---:|---|\n",
+            "| record | duration (s) | dt (s) | simulations | wall (s) | full runs (s) | ratio | same OAS | CPU (s) | full runs CPU (s) | CPU ratio |\n\
+             |---|---:|---:|---:|---:|---:|---:|---|---:|---:|---:|\n",
         );
     } else {
         s.push_str(
-            "| record | duration (s) | dt (s) | simulations | wall (s) |\n|---|---:|---:|---:|---:|\n",
+            "| record | duration (s) | dt (s) | simulations | wall (s) | CPU (s) |\n|---|---:|---:|---:|---:|---:|\n",
         );
     }
     for r in rows {
@@ -224,13 +272,22 @@ fn report(rows: &[Row], threads: usize, setup: &str) -> String {
             "| {} | {:.1} | {} | {} | {:.2} |",
             r.name, r.duration, r.dt, r.simulations, r.seconds
         );
+        let cpu = |c: Option<f64>| c.map_or("-".to_string(), |c| format!("{c:.2}"));
         if let Some((full, same)) = r.full {
+            let ratio = match (r.cpu, r.full_cpu) {
+                (Some(a), Some(b)) if a > 0.0 => format!("{:.2}", b / a),
+                _ => "-".into(),
+            };
             let _ = write!(
                 s,
-                " {full:.2} | {:.2} | {} |",
+                " {full:.2} | {:.2} | {} | {} | {} | {ratio} |",
                 full / r.seconds,
-                if same { "yes" } else { "**no**" }
+                if same { "yes" } else { "**no**" },
+                cpu(r.cpu),
+                cpu(r.full_cpu)
             );
+        } else {
+            let _ = write!(s, " {} |", cpu(r.cpu));
         }
         s.push('\n');
     }

@@ -112,15 +112,18 @@ pub struct SimulationArgs {
     #[arg(long)]
     pub rk4: bool,
     /// Run every simulation to its end (by default a single block stops as soon as an energy
-    /// bound proves that the rest of the motion cannot tip it: the same verdicts, faster).
+    /// bound proves that the rest of the motion cannot tip it: the same verdicts, faster; with
+    /// --lagrangian so do columns of 2 or 3 equal blocks with H/B 3–12, whose bound is
+    /// certified, see docs/spectra.md, "Early stop of columns").
     #[arg(long = "full-runs")]
     pub full_runs: bool,
     /// The exact Lagrangian equations of motion (thesis Eq. 6 plus the velocity terms), which
     /// conserve energy between events.
     #[arg(long)]
     pub lagrangian: bool,
-    /// With --lagrangian, columns of several blocks: stop a run as soon as an energy bound says
-    /// the rest of the record cannot tip the column (UNPROVEN for columns, see docs/spectra.md,
+    /// With --lagrangian, any column of several blocks: stop a run as soon as an energy bound
+    /// says the rest of the record cannot tip the column. Already the default where the bound
+    /// is certified (2 or 3 equal blocks, H/B 3–12); elsewhere UNPROVEN (docs/spectra.md,
     /// "Early stop of columns"; check with `rocking bench spectra --compare`).
     #[arg(long = "column-bound", requires = "lagrangian")]
     pub column_bound: bool,

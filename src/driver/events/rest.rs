@@ -1,7 +1,9 @@
 //! Stops of a column that can no longer move or tip, exact verdicts that end a run early:
 //! closed after the ground has gone quiet for good ([`StopReason::AtRest`],
 //! `stopping.quiet_after`), and the energy bound of `stopping.stop_when_safe` that proves a
-//! single block cannot tip in the rest of the motion ([`StopReason::CannotTip`]).
+//! single block cannot tip in the rest of the motion ([`StopReason::CannotTip`]), and its
+//! extension to columns (`stopping.stop_when_safe_column`, or `stop_when_safe` on the columns
+//! whose barrier is certified, [`crate::driver::column_is_certified`]).
 
 use crate::driver::chain::ChainDynamics;
 use crate::driver::problem::Problem;
@@ -35,7 +37,10 @@ impl CannotTip {
                 .stop_when_safe
                 .then(|| problem.chain.energy_growth_bound())
         } else {
-            (stopping.stop_when_safe_column && problem.opts.physics.exact_velocity_terms)
+            // Proven where the barrier is certified, forced (unproven) elsewhere.
+            let asked = stopping.stop_when_safe_column
+                || (stopping.stop_when_safe && problem.chain.barrier_certified());
+            (asked && problem.opts.physics.exact_velocity_terms)
                 .then(|| problem.chain.column_growth_bound())
         }?;
         Some(CannotTip {

@@ -1,6 +1,8 @@
 //! The potential-energy barrier behind the column stop
-//! ([`StoppingOptions::stop_when_safe_column`]), which is not proven (docs/spectra.md, "Early
-//! stop of columns"): its two lemmas checked on many paths. From the straight column, along a
+//! ([`StoppingOptions::stop_when_safe_column`]), certified by `driver::barrier` for 2 and 3
+//! equal blocks (docs/spectra.md, "Early stop of columns"): here its two lemmas checked on many
+//! paths through the driver's own code, and the certificate's closed forms checked against the
+//! driver's potential energy and tipping check. From the straight column, along a
 //! ray of interface rotations (one signed angle per interface: negative about the right corner,
 //! positive about the left), up to the first static tipping of some part (the driver's own
 //! check): (L1) the potential energy stays `≥ 0` before it, (L2) at the tipping it is at least
@@ -117,6 +119,57 @@ fn no_ray_to_tipping_is_cheaper_than_the_rigid_mechanisms() {
                 "{n}, {h_over_b}: {at_tip}"
             );
             assert!(before >= -1e-12, "{n}, {h_over_b}: {before}");
+        }
+    }
+}
+
+/// The closed forms that the certificate bounds (`driver::barrier`) are the driver's own
+/// potential energy and tipping check, on random configurations of 2 and 3 blocks.
+#[test]
+fn the_certified_formulas_are_the_drivers_potential_and_tipping() {
+    let mut rng = Lcg(777);
+    let mut tipped_seen = [0usize; 2];
+    for n in [2, 3] {
+        for h_over_b in [3.0, 5.0, 12.0] {
+            let column = crate::spectra::column_of_size(10.0, h_over_b, n).unwrap();
+            let b = 0.5 * column.blocks()[0].width;
+            let mass = column.blocks()[0].mass;
+            let lambda = h_over_b / n as f64;
+            let mut dy = ColumnDynamics::new(&column, G, true, 1e-9, f64::INFINITY);
+            for _ in 0..2000 {
+                let psi: Vec<f64> = (0..n).map(|_| 0.8 * rng.next()).collect();
+                let (tipped, v) = probe(&mut dy, &psi);
+                let (v_unit, margins) = crate::driver::barrier::configuration(&psi, lambda);
+                let scale = mass * G * b;
+                assert!(
+                    (v - v_unit * scale).abs() <= 1e-9 * scale,
+                    "{psi:?}: {v} vs {}",
+                    v_unit * scale
+                );
+                let tipped_here = margins.iter().any(|&m| m < 0.0);
+                // Away from the boundary (margins of a rounding size are left out).
+                if margins.iter().all(|m| m.abs() > 1e-9) {
+                    assert_eq!(tipped, tipped_here, "{n}, {h_over_b}, {psi:?}: {margins:?}");
+                    tipped_seen[usize::from(tipped)] += 1;
+                }
+            }
+        }
+    }
+    assert!(
+        tipped_seen[0] > 100 && tipped_seen[1] > 100,
+        "{tipped_seen:?}"
+    );
+    // Where nothing has tipped, every |ψ_k| ≤ atan(2/λ): the box the certificate covers.
+    for n in [2, 3] {
+        for lambda in [1.0, 1.5, 4.0, 6.0] {
+            for _ in 0..200_000 {
+                let psi: Vec<f64> = (0..n).map(|_| 1.5 * rng.next()).collect();
+                let (_, margins) = crate::driver::barrier::configuration(&psi, lambda);
+                if margins.iter().all(|&m| m >= 0.0) {
+                    let bound = (2.0 / lambda).atan();
+                    assert!(psi.iter().all(|p| p.abs() <= bound), "{psi:?}, {lambda}");
+                }
+            }
         }
     }
 }
