@@ -276,38 +276,27 @@ fn run_oc(a: &ArchOcArgs) -> Result<(), String> {
             .iter()
             .filter_map(|e| e.level.map(|l| (e.p_tp, l)))
             .collect();
-        Chart {
-            title: format!(
+        super::oc::oc_chart(
+            format!(
                 "Arch OC, {}, R = {} m, t/R = {}, {} voussoirs",
                 oc.pulse.name(),
                 a.radius,
                 a.family.thickness_ratio,
                 a.family.voussoirs
             ),
-            x_label: "p t_p (p of the onset mechanism)".into(),
-            y_label: "a_p / (λ g)".into(),
-            x_scale: Scale::Log,
-            series: vec![
-                Series {
-                    name: "collapses".into(),
-                    points: report
-                        .points
-                        .iter()
-                        .filter(|q| q.collapses)
-                        .map(|q| (q.p_tp, q.level))
-                        .collect(),
-                    style: Style::Points,
-                    color: COLORS[0],
-                },
-                Series {
-                    name: "envelope".into(),
-                    points: env,
-                    style: Style::Line,
-                    color: COLORS[1],
-                },
-            ],
-            ..Chart::default()
-        }
+            "p t_p (p of the onset mechanism)",
+            "a_p / (λ g)",
+            (
+                "collapses",
+                report
+                    .points
+                    .iter()
+                    .filter(|q| q.collapses)
+                    .map(|q| (q.p_tp, q.level))
+                    .collect(),
+            ),
+            env,
+        )
         .write(path)?;
     }
     Ok(())

@@ -126,33 +126,54 @@ pub fn run(a: &OcArgs) -> Result<(), String> {
             .iter()
             .filter_map(|(x, e)| e.map(|y| (*x, y)))
             .collect();
-        Chart {
-            title: format!(
+        oc_chart(
+            format!(
                 "Overturning curve, {}, {} block{}",
                 shape.name(),
                 a.blocks,
                 if a.blocks == 1 { "" } else { "s" }
             ),
-            x_label: "p t_p".into(),
-            y_label: "a_p / a_p,min".into(),
-            x_scale: Scale::Log,
-            series: vec![
-                Series {
-                    name: "overturns".into(),
-                    points: pts.iter().filter(|p| p.2).map(|p| (p.0, p.1)).collect(),
-                    style: Style::Points,
-                    color: COLORS[0],
-                },
-                Series {
-                    name: "envelope".into(),
-                    points: env,
-                    style: Style::Line,
-                    color: COLORS[1],
-                },
-            ],
-            ..Chart::default()
-        }
+            "p t_p",
+            "a_p / a_p,min",
+            (
+                "overturns",
+                pts.iter().filter(|p| p.2).map(|p| (p.0, p.1)).collect(),
+            ),
+            env,
+        )
         .write(path)?;
     }
     Ok(())
+}
+
+/// The chart of an overturning curve: the grid points that overturn (or collapse), `(name,
+/// points)`, and their lower envelope, against `p t_p` on a log axis.
+pub(super) fn oc_chart(
+    title: String,
+    x_label: &str,
+    y_label: &str,
+    (name, points): (&str, Vec<(f64, f64)>),
+    envelope: Vec<(f64, f64)>,
+) -> Chart {
+    Chart {
+        title,
+        x_label: x_label.into(),
+        y_label: y_label.into(),
+        x_scale: Scale::Log,
+        series: vec![
+            Series {
+                name: name.into(),
+                points,
+                style: Style::Points,
+                color: COLORS[0],
+            },
+            Series {
+                name: "envelope".into(),
+                points: envelope,
+                style: Style::Line,
+                color: COLORS[1],
+            },
+        ],
+        ..Chart::default()
+    }
 }
