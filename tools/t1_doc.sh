@@ -18,7 +18,9 @@ bands=("$d"/t1-band/*.json)
   echo "## t₁'s band per record: each member (issue 14 item 3)"
   echo
   echo "Rows: \`rocking t1 RECORD... --band --json\` (\`docs/data/t1-band/\`; the far field run as eight"
-  echo "\`--shard i/8\` pieces on this machine, 07:02–07:42 on 2026-11-23). The band is t₁ over five"
+  echo "\`--shard i/8\` pieces on this machine, 07:02–07:42 on 2026-11-23, the near field (its 56 records"
+  echo "sorted by path) as eight \`--shard i/8\` pieces, 12:13–13:11 on 2026-11-23, joined by"
+  echo "\`rocking t1 --merge\`; both at the current default step, the near field with commit 0359335). The band is t₁ over five"
   echo "spectra a careful analyst would call equivalent: as computed, half the time step, the level grid"
   echo "shifted by half a cell, the size grid shifted by half a cell, the other event locator"
   echo "(\`docs/spectra.md\`); the conservative t₁ is i_cr / f_min of the envelope of the five, i.e. the"
