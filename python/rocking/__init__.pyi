@@ -44,6 +44,8 @@ class Simulation:
     """The result of :func:`simulate` (``rocking simulate``'s history, events and summary)."""
 
     title: str
+    scheme: str
+    """``"event_driven"``."""
     t: Float64Array
     """Times (s), ``(samples,)``."""
     angles: Float64Array
@@ -71,9 +73,46 @@ class Simulation:
     def events_of(self, kind: str) -> List[Dict[str, Any]]: ...
     def plot(self, ax: Any = None, events: bool = True) -> Any: ...
 
-def simulate(scene: Union[Path, Mapping[str, Any]], base: Optional[Path] = None) -> Simulation:
+class ContactSimulation:
+    """The result of :func:`simulate` for a scene run by the contact scheme (joints that slide
+    or fly; ``rocking simulate``'s history, events and summary of such a scene)."""
+
+    title: str
+    scheme: str
+    """``"moreau"`` or ``"auto"``."""
+    t: Float64Array
+    """Times (s), ``(samples,)``."""
+    x: Float64Array
+    """Drum centres' horizontal displacement from the first sample (m), ``(samples, n)``."""
+    y: Float64Array
+    """Drum centres' vertical displacement from the first sample (m), ``(samples, n)``."""
+    block_rotations: Float64Array
+    """Drum rotations (rad), ``(samples, n)``."""
+    slips: Float64Array
+    """Joint slips (m), ``(samples, n)``."""
+    events: List[Dict[str, Any]]
+    """The objects of ``events.jsonl``."""
+    summary: Dict[str, Any]
+    """``summary.json``."""
+    @property
+    def overturned(self) -> bool: ...
+    @property
+    def t_end(self) -> float: ...
+    @property
+    def stop_reason(self) -> str: ...
+    @property
+    def residual_slip(self) -> Float64Array: ...
+    @property
+    def peak_slip(self) -> Float64Array: ...
+    def events_of(self, kind: str) -> List[Dict[str, Any]]: ...
+    def plot(self, ax: Any = None, events: bool = True) -> Any: ...
+
+def simulate(
+    scene: Union[Path, Mapping[str, Any]], base: Optional[Path] = None
+) -> Union[Simulation, ContactSimulation]:
     """A scene (a file, or a dict with the CLI's schema) through the reference driver (thesis
-    3.3, SPEC §5), as ``rocking simulate``."""
+    3.3, SPEC §5) or, for joints that slide or fly, the contact scheme, as ``rocking
+    simulate``."""
 
 class Oas:
     """An overturning acceleration spectrum (thesis Fig. 36, 37, 43)."""
