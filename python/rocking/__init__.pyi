@@ -2,7 +2,7 @@
 Python layer (simulate, spectra, design, plots)."""
 
 from os import PathLike
-from typing import Any, Callable, Dict, List, Literal, Mapping, Optional, Sequence, Union, overload
+from typing import Any, Callable, Dict, List, Literal, Mapping, Optional, Sequence, Tuple, Union, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -107,9 +107,32 @@ class ContactSimulation:
     def events_of(self, kind: str) -> List[Dict[str, Any]]: ...
     def plot(self, ax: Any = None, events: bool = True) -> Any: ...
 
+class LoopSimulation:
+    """The result of :func:`simulate` for a closed chain (an arch or a capped colonnade)."""
+
+    title: str
+    scheme: str
+    """``"loop"``."""
+    t: Float64Array
+    """Times (s), ``(samples,)``."""
+    angles: Float64Array
+    """Each joint's signed angle (rad), ``(samples, joints)``."""
+    events: List[Dict[str, Any]]
+    """The objects of ``events.jsonl``."""
+    summary: Dict[str, Any]
+    """``summary.json``."""
+    @property
+    def collapsed(self) -> bool: ...
+    @property
+    def t_end(self) -> float: ...
+    @property
+    def hinges(self) -> List[Tuple[int, int]]: ...
+    def events_of(self, kind: str) -> List[Dict[str, Any]]: ...
+    def plot(self, ax: Any = None, events: bool = True) -> Any: ...
+
 def simulate(
     scene: Union[Path, Mapping[str, Any]], base: Optional[Path] = None
-) -> Union[Simulation, ContactSimulation]:
+) -> Union[Simulation, ContactSimulation, LoopSimulation]:
     """A scene (a file, or a dict with the CLI's schema) through the reference driver (thesis
     3.3, SPEC §5) or, for joints that slide or fly, the contact scheme, as ``rocking
     simulate``."""

@@ -14,16 +14,34 @@ from ._rocking import Pulse, Record
 
 
 class _Run:
-    """What :class:`Simulation` and :class:`ContactSimulation` share: the summary's verdict and
-    the events."""
+    """What every result of :func:`simulate` has: the title, the scheme that ran it, the sample
+    times, the events and the summary."""
 
     def __init__(self, raw):
         self.title = raw["title"]
         self.scheme = raw["scheme"]
         self.t = raw["t"]
-        self.block_rotations = raw["block_rotations"]
         self.events = raw["events"]
         self.summary = raw["summary"]
+
+    @property
+    def t_end(self):
+        """Time reached (s)."""
+        return self.summary["t_end"]
+
+    def events_of(self, kind):
+        """The events of one kind (``opening``, ``impact``, ``settled``, ``overturned``, …; the
+        contact scheme's ``slip_start``, ``slip_stop``, ``lift_off``, ``landing``,
+        ``scheme_switch``; a loop's ``closing``, ``locked``, ``collapsed``)."""
+        return [e for e in self.events if e["kind"] == kind]
+
+
+class _ColumnRun(_Run):
+    """A column's run (either scheme): block rotations, the verdict and the stop."""
+
+    def __init__(self, raw):
+        super().__init__(raw)
+        self.block_rotations = raw["block_rotations"]
 
     @property
     def overturned(self):
@@ -32,21 +50,10 @@ class _Run:
         return self.summary["overturned"]
 
     @property
-    def t_end(self):
-        """Time reached (s)."""
-        return self.summary["t_end"]
-
-    @property
     def stop_reason(self):
         """Why the run stopped: ``duration``, ``overturned``, ``fallen``, ``sliding``, ``tension``,
         ``too_many_events``, ``at_rest`` or ``cannot_tip`` (the contact scheme also ``slid_off``)."""
         return self.summary["stop_reason"]
-
-    def events_of(self, kind):
-        """The events of one kind (``opening``, ``impact``, ``settled``, ``overturned``, …; the
-        contact scheme's ``slip_start``, ``slip_stop``, ``lift_off``, ``landing``,
-        ``scheme_switch``)."""
-        return [e for e in self.events if e["kind"] == kind]
 
     def plot(self, ax=None, events=True):
         """Block rotations against time with the events marked (matplotlib, ``pip install
@@ -61,7 +68,7 @@ class _Run:
                 f"{s['impacts']} impacts, {len(self.events)} events, {len(self.t)} samples)")
 
 
-class Simulation(_Run):
+class Simulation(_ColumnRun):
     """The result of :func:`simulate` for a scene run by the reference driver (``scheme`` is
     ``"event_driven"``): what ``rocking simulate`` writes, in memory.
 
@@ -90,7 +97,7 @@ class Simulation(_Run):
         self.dof_rates = raw["dof_rates"]
 
 
-class ContactSimulation(_Run):
+class ContactSimulation(_ColumnRun):
     """The result of :func:`simulate` for a scene run by the contact scheme (joints that slide or
     fly: ``scheme`` ``"moreau"`` or ``"auto"``, ``on_sliding: "slide"``, ``on_tension: "fly"``;
     docs/multidrum.md), as ``rocking simulate`` writes it.
@@ -126,8 +133,52 @@ class ContactSimulation(_Run):
         return np.asarray(self.summary["peak_slip"])
 
 
+class LoopSimulation(_Run):
+    """The result of :func:`simulate` for a closed chain (an ``"arch"`` or ``"colonnade"`` scene,
+    ``scheme`` ``"loop"``; docs/arches.md), as ``rocking simulate`` writes it.
+
+    History (empty arrays when ``output.history`` is false): ``t`` (s), ``(samples,)``, and
+    ``angles``, each joint's signed angle ``phĭ_k + phî_k`` (rad), ``(samples, joints)`` (the
+    columns of ``history.csv``). ``events``: the objects of ``events.jsonl`` (``t``, ``kind``:
+    opening, closing, locked, settled, collapsed; ``statuses`` after; a closing's ``joints``,
+    ``kinetic_before``, ``kinetic_after``). ``summary``: ``summary.json`` (``collapsed``,
+    ``peak_angle``, ``hinges`` as ``[joint, face]``, ``max_closure_residual``, …).
+    """
+
+    def __init__(self, raw):
+        super().__init__(raw)
+        self.angles = raw["angles"]
+
+    @property
+    def collapsed(self):
+        """Whether the chain collapsed (passed its point of no return, docs/arches.md)."""
+        return self.summary["collapsed"]
+
+    @property
+    def hinges(self):
+        """Every ``(joint, face)`` that opened: face −1 about the joint's R corner (an arch's
+        intrados), +1 about L (extrados)."""
+        return [tuple(h) for h in self.summary["hinges"]]
+
+    def plot(self, ax=None, events=True):
+        """The joint angles that moved against time, events marked (matplotlib). Returns the
+        axes."""
+        from . import plot
+
+        return plot.loop_simulation(self, ax=ax, events=events)
+
+    def __repr__(self):
+        s = self.summary
+        verdict = "collapsed" if s["collapsed"] else "end of duration"
+        return (f"LoopSimulation({self.title!r}: {verdict} at t = {s['t_end']:.4f} s, "
+                f"{len(self.events)} events, peak joint angle {s['peak_angle']:.6f} rad)")
+
+
+_RESULTS = {"event_driven": Simulation, "loop": LoopSimulation}
+
+
 def _result(raw):
-    return Simulation(raw) if raw["scheme"] == "event_driven" else ContactSimulation(raw)
+    return _RESULTS.get(raw["scheme"], ContactSimulation)(raw)
 
 
 def _json_value(x):
@@ -169,10 +220,11 @@ def simulate(scene, base=None):
     A scene that chooses the contact scheme (``scheme`` ``"moreau"`` or ``"auto"``,
     ``on_sliding: "slide"``, ``on_tension: "fly"``, ``friction``; docs/multidrum.md) runs it as
     ``rocking simulate`` does and returns a :class:`ContactSimulation` (drum positions, rotations
-    and joint slips).
+    and joint slips); a closed chain (``"arch"`` or ``"colonnade"`` in place of ``blocks``)
+    runs the loop driver and returns a :class:`LoopSimulation` (joint angles, hinges).
 
     The simulation runs without the GIL (other Python threads go on) but cannot be interrupted
-    midway. Returns a :class:`Simulation` (or :class:`ContactSimulation`); an invalid scene raises
+    midway. Returns a :class:`Simulation` (or :class:`ContactSimulation`, :class:`LoopSimulation`); an invalid scene raises
     :class:`rocking.RockingError` naming the field.
     """
     if isinstance(scene, (str, os.PathLike)):
