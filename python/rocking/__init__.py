@@ -10,8 +10,10 @@ left corner (``>= 0``, status +1); status 0 is closed (SPEC §1).
 - :func:`column_mass_matrix` (``M`` and ``q`` of a column of rectangular blocks),
   :func:`reduce` (``BᵀMB``, ``Bᵀp`` of an FE model, thesis Appendix C);
 - :func:`read_record`, :class:`Record` and the pulses (:func:`half_sine`, :func:`full_sine`, …);
-- :func:`simulate`: a scene (the CLI's schema) through the reference driver (thesis 3.3), with
-  the history as arrays, the events and the summary of ``rocking simulate``;
+- :func:`simulate`: a scene (the CLI's schema) through the reference driver (thesis 3.3) or,
+  for joints that slide or fly, the contact scheme, or an arch / colonnade through the loop
+  driver, with the history as arrays, the events and
+  the summary of ``rocking simulate``;
 - :func:`oas`, :func:`t1`, :func:`oc`: overturning spectra (thesis Chapter 5), parallel,
   interruptible with Ctrl-C; :func:`design_width`, :func:`design_check`: the design method
   (Eq. 31);
@@ -48,7 +50,7 @@ from ._rocking import (
 from . import plot
 from ._design import design_check, design_width
 from ._errors import error as _error
-from ._simulate import Simulation, simulate
+from ._simulate import ContactSimulation, LoopSimulation, Simulation, simulate
 from ._spectra import Oas, Oc, oas, oc, t1
 
 # Defaults, so that a RockingError raised from Python code has every attribute too.
@@ -74,6 +76,8 @@ __all__ = [
     "Record",
     "Report",
     "RockingError",
+    "ContactSimulation",
+    "LoopSimulation",
     "Simulation",
     "__version__",
     "check_configuration",

@@ -2,7 +2,7 @@
 Python layer (simulate, spectra, design, plots)."""
 
 from os import PathLike
-from typing import Any, Callable, Dict, List, Literal, Mapping, Optional, Sequence, Union, overload
+from typing import Any, Callable, Dict, List, Literal, Mapping, Optional, Sequence, Tuple, Union, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -44,6 +44,8 @@ class Simulation:
     """The result of :func:`simulate` (``rocking simulate``'s history, events and summary)."""
 
     title: str
+    scheme: str
+    """``"event_driven"``."""
     t: Float64Array
     """Times (s), ``(samples,)``."""
     angles: Float64Array
@@ -71,9 +73,69 @@ class Simulation:
     def events_of(self, kind: str) -> List[Dict[str, Any]]: ...
     def plot(self, ax: Any = None, events: bool = True) -> Any: ...
 
-def simulate(scene: Union[Path, Mapping[str, Any]], base: Optional[Path] = None) -> Simulation:
+class ContactSimulation:
+    """The result of :func:`simulate` for a scene run by the contact scheme (joints that slide
+    or fly; ``rocking simulate``'s history, events and summary of such a scene)."""
+
+    title: str
+    scheme: str
+    """``"moreau"`` or ``"auto"``."""
+    t: Float64Array
+    """Times (s), ``(samples,)``."""
+    x: Float64Array
+    """Drum centres' horizontal displacement from the first sample (m), ``(samples, n)``."""
+    y: Float64Array
+    """Drum centres' vertical displacement from the first sample (m), ``(samples, n)``."""
+    block_rotations: Float64Array
+    """Drum rotations (rad), ``(samples, n)``."""
+    slips: Float64Array
+    """Joint slips (m), ``(samples, n)``."""
+    events: List[Dict[str, Any]]
+    """The objects of ``events.jsonl``."""
+    summary: Dict[str, Any]
+    """``summary.json``."""
+    @property
+    def overturned(self) -> bool: ...
+    @property
+    def t_end(self) -> float: ...
+    @property
+    def stop_reason(self) -> str: ...
+    @property
+    def residual_slip(self) -> Float64Array: ...
+    @property
+    def peak_slip(self) -> Float64Array: ...
+    def events_of(self, kind: str) -> List[Dict[str, Any]]: ...
+    def plot(self, ax: Any = None, events: bool = True) -> Any: ...
+
+class LoopSimulation:
+    """The result of :func:`simulate` for a closed chain (an arch or a capped colonnade)."""
+
+    title: str
+    scheme: str
+    """``"loop"``."""
+    t: Float64Array
+    """Times (s), ``(samples,)``."""
+    angles: Float64Array
+    """Each joint's signed angle (rad), ``(samples, joints)``."""
+    events: List[Dict[str, Any]]
+    """The objects of ``events.jsonl``."""
+    summary: Dict[str, Any]
+    """``summary.json``."""
+    @property
+    def collapsed(self) -> bool: ...
+    @property
+    def t_end(self) -> float: ...
+    @property
+    def hinges(self) -> List[Tuple[int, int]]: ...
+    def events_of(self, kind: str) -> List[Dict[str, Any]]: ...
+    def plot(self, ax: Any = None, events: bool = True) -> Any: ...
+
+def simulate(
+    scene: Union[Path, Mapping[str, Any]], base: Optional[Path] = None
+) -> Union[Simulation, ContactSimulation, LoopSimulation]:
     """A scene (a file, or a dict with the CLI's schema) through the reference driver (thesis
-    3.3, SPEC §5), as ``rocking simulate``."""
+    3.3, SPEC §5) or, for joints that slide or fly, the contact scheme, as ``rocking
+    simulate``."""
 
 class Oas:
     """An overturning acceleration spectrum (thesis Fig. 36, 37, 43)."""

@@ -13,8 +13,64 @@ from ._errors import error as _error
 from ._rocking import Pulse, Record
 
 
-class Simulation:
-    """The result of :func:`simulate`: what ``rocking simulate`` writes, in memory.
+class _Run:
+    """What every result of :func:`simulate` has: the title, the scheme that ran it, the sample
+    times, the events and the summary."""
+
+    def __init__(self, raw):
+        self.title = raw["title"]
+        self.scheme = raw["scheme"]
+        self.t = raw["t"]
+        self.events = raw["events"]
+        self.summary = raw["summary"]
+
+    @property
+    def t_end(self):
+        """Time reached (s)."""
+        return self.summary["t_end"]
+
+    def events_of(self, kind):
+        """The events of one kind (``opening``, ``impact``, ``settled``, ``overturned``, …; the
+        contact scheme's ``slip_start``, ``slip_stop``, ``lift_off``, ``landing``,
+        ``scheme_switch``; a loop's ``closing``, ``locked``, ``collapsed``)."""
+        return [e for e in self.events if e["kind"] == kind]
+
+
+class _ColumnRun(_Run):
+    """A column's run (either scheme): block rotations, the verdict and the stop."""
+
+    def __init__(self, raw):
+        super().__init__(raw)
+        self.block_rotations = raw["block_rotations"]
+
+    @property
+    def overturned(self):
+        """Whether the column overturned (static tipping; fallen with ``continue_until_fallen``;
+        a drum slid off, in the contact scheme)."""
+        return self.summary["overturned"]
+
+    @property
+    def stop_reason(self):
+        """Why the run stopped: ``duration``, ``overturned``, ``fallen``, ``sliding``, ``tension``,
+        ``too_many_events``, ``at_rest`` or ``cannot_tip`` (the contact scheme also ``slid_off``)."""
+        return self.summary["stop_reason"]
+
+    def plot(self, ax=None, events=True):
+        """Block rotations against time with the events marked (matplotlib, ``pip install
+        './python[plot]'``). Returns the axes."""
+        from . import plot
+
+        return plot.simulation(self, ax=ax, events=events)
+
+    def __repr__(self):
+        s = self.summary
+        return (f"{type(self).__name__}({self.title!r}: {s['stop_reason']} at t = {s['t_end']:.4f} s, "
+                f"{s['impacts']} impacts, {len(self.events)} events, {len(self.t)} samples)")
+
+
+class Simulation(_ColumnRun):
+    """The result of :func:`simulate` for a scene run by the reference driver (``scheme`` is
+    ``"event_driven"``): what ``rocking simulate`` writes, in memory.
 
     History (one row per kept step, ``output.every``; empty arrays when ``output.history`` is
     false), the columns of ``history.csv``:
@@ -33,48 +89,96 @@ class Simulation:
     """
 
     def __init__(self, raw):
-        self.title = raw["title"]
-        self.t = raw["t"]
+        super().__init__(raw)
         self.angles = raw["angles"]
         self.rates = raw["rates"]
-        self.block_rotations = raw["block_rotations"]
         self.statuses = raw["statuses"]
         self.dof_angles = raw["dof_angles"]
         self.dof_rates = raw["dof_rates"]
-        self.events = raw["events"]
-        self.summary = raw["summary"]
+
+
+class ContactSimulation(_ColumnRun):
+    """The result of :func:`simulate` for a scene run by the contact scheme (joints that slide or
+    fly: ``scheme`` ``"moreau"`` or ``"auto"``, ``on_sliding: "slide"``, ``on_tension: "fly"``;
+    docs/multidrum.md), as ``rocking simulate`` writes it.
+
+    History (empty arrays when ``output.history`` is false), the columns of ``history.csv``, each
+    ``(samples, n)`` but ``t``:
+
+    - ``t`` (s), shape ``(samples,)``;
+    - ``x``, ``y``: each drum's centre, displacement from the first sample (m);
+    - ``block_rotations``: each drum's rotation (rad, counter-clockwise positive);
+    - ``slips``: each joint's slip (m, + when the upper face moved to +x).
+
+    ``events``: the objects of ``events.jsonl`` (``t``, ``kind``, ``joint``; a ``scheme_switch``
+    with ``from``, ``to``, ``why``, ``kinetic_before``, ``kinetic_after``, ``slip_dropped``).
+    ``summary``: the dict of ``summary.json`` (``peak_slip``, ``residual_slip``,
+    ``peak_top_displacement``, ``modes_end``, the energy accounts, …).
+    """
+
+    def __init__(self, raw):
+        super().__init__(raw)
+        self.x = raw["x"]
+        self.y = raw["y"]
+        self.slips = raw["slips"]
 
     @property
-    def overturned(self):
-        """Whether the column overturned (static tipping; fallen with ``continue_until_fallen``)."""
-        return self.summary["overturned"]
+    def residual_slip(self):
+        """Each joint's slip at the end (m, signed)."""
+        return np.asarray(self.summary["residual_slip"])
 
     @property
-    def t_end(self):
-        """Time reached (s)."""
-        return self.summary["t_end"]
+    def peak_slip(self):
+        """Each joint's largest absolute slip (m)."""
+        return np.asarray(self.summary["peak_slip"])
+
+
+class LoopSimulation(_Run):
+    """The result of :func:`simulate` for a closed chain (an ``"arch"`` or ``"colonnade"`` scene,
+    ``scheme`` ``"loop"``; docs/arches.md), as ``rocking simulate`` writes it.
+
+    History (empty arrays when ``output.history`` is false): ``t`` (s), ``(samples,)``, and
+    ``angles``, each joint's signed angle ``phĭ_k + phî_k`` (rad), ``(samples, joints)`` (the
+    columns of ``history.csv``). ``events``: the objects of ``events.jsonl`` (``t``, ``kind``:
+    opening, closing, locked, settled, collapsed; ``statuses`` after; a closing's ``joints``,
+    ``kinetic_before``, ``kinetic_after``). ``summary``: ``summary.json`` (``collapsed``,
+    ``peak_angle``, ``hinges`` as ``[joint, face]``, ``max_closure_residual``, …).
+    """
+
+    def __init__(self, raw):
+        super().__init__(raw)
+        self.angles = raw["angles"]
 
     @property
-    def stop_reason(self):
-        """Why the run stopped: ``duration``, ``overturned``, ``fallen``, ``sliding``, ``tension``,
-        ``too_many_events``, ``at_rest`` or ``cannot_tip``."""
-        return self.summary["stop_reason"]
+    def collapsed(self):
+        """Whether the chain collapsed (passed its point of no return, docs/arches.md)."""
+        return self.summary["collapsed"]
 
-    def events_of(self, kind):
-        """The events of one kind (``opening``, ``impact``, ``settled``, ``overturned``, …)."""
-        return [e for e in self.events if e["kind"] == kind]
+    @property
+    def hinges(self):
+        """Every ``(joint, face)`` that opened: face −1 about the joint's R corner (an arch's
+        intrados), +1 about L (extrados)."""
+        return [tuple(h) for h in self.summary["hinges"]]
 
     def plot(self, ax=None, events=True):
-        """Block rotations against time with the events marked (matplotlib, ``pip install
-        './python[plot]'``). Returns the axes."""
+        """The joint angles that moved against time, events marked (matplotlib). Returns the
+        axes."""
         from . import plot
 
-        return plot.simulation(self, ax=ax, events=events)
+        return plot.loop_simulation(self, ax=ax, events=events)
 
     def __repr__(self):
         s = self.summary
-        return (f"Simulation({self.title!r}: {s['stop_reason']} at t = {s['t_end']:.4f} s, "
-                f"{s['impacts']} impacts, {len(self.events)} events, {len(self.t)} samples)")
+        verdict = "collapsed" if s["collapsed"] else "end of duration"
+        return (f"LoopSimulation({self.title!r}: {verdict} at t = {s['t_end']:.4f} s, "
+                f"{len(self.events)} events, peak joint angle {s['peak_angle']:.6f} rad)")
+
+
+_RESULTS = {"event_driven": Simulation, "loop": LoopSimulation}
+
+
+def _result(raw):
+    return _RESULTS.get(raw["scheme"], ContactSimulation)(raw)
 
 
 def _json_value(x):
@@ -113,12 +217,18 @@ def simulate(scene, base=None):
     (default: the current directory). In a dict, ``excitation`` may also be a
     :class:`rocking.Pulse` or a :class:`rocking.Record`, and numbers may be numpy values.
 
+    A scene that chooses the contact scheme (``scheme`` ``"moreau"`` or ``"auto"``,
+    ``on_sliding: "slide"``, ``on_tension: "fly"``, ``friction``; docs/multidrum.md) runs it as
+    ``rocking simulate`` does and returns a :class:`ContactSimulation` (drum positions, rotations
+    and joint slips); a closed chain (``"arch"`` or ``"colonnade"`` in place of ``blocks``)
+    runs the loop driver and returns a :class:`LoopSimulation` (joint angles, hinges).
+
     The simulation runs without the GIL (other Python threads go on) but cannot be interrupted
-    midway. Returns a :class:`Simulation`; an invalid scene raises :class:`rocking.RockingError`
-    naming the field.
+    midway. Returns a :class:`Simulation` (or :class:`ContactSimulation`, :class:`LoopSimulation`); an invalid scene raises
+    :class:`rocking.RockingError` naming the field.
     """
     if isinstance(scene, (str, os.PathLike)):
-        return Simulation(_rocking._simulate(path=os.fspath(scene)))
+        return _result(_rocking._simulate(path=os.fspath(scene)))
     if not isinstance(scene, Mapping):
         raise TypeError(f"scene: expected a dict or the path of a scene file, got {type(scene).__name__}")
     spec = dict(scene)
@@ -131,4 +241,4 @@ def simulate(scene, base=None):
     _check_finite(spec, "")
     text = json.dumps(spec, default=_json_value)
     base = Path.cwd() if base is None else Path(base)
-    return Simulation(_rocking._simulate(text=text, base=os.fspath(base), record=record))
+    return _result(_rocking._simulate(text=text, base=os.fspath(base), record=record))

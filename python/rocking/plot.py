@@ -36,6 +36,12 @@ EVENT_STYLE = {
     "overturned": ("black", "-"),
     "sliding": ("black", "-"),
     "tension": ("black", "-"),
+    "closing": ("tab:orange", "--"),
+    "locked": ("tab:gray", ":"),
+    "collapsed": ("black", "-"),
+    "slip_start": ("tab:purple", ":"),
+    "lift_off": ("tab:red", ":"),
+    "landing": ("tab:red", "--"),
 }
 
 
@@ -46,17 +52,37 @@ def simulation(result, ax=None, events=True):
     for k in range(result.block_rotations.shape[1]):
         ax.plot(result.t, result.block_rotations[:, k], label=f"block {k}")
     if events:
-        seen = set()
-        for e in result.events:
-            colour, style = EVENT_STYLE.get(e["kind"], ("black", "-"))
-            label = e["kind"] if e["kind"] not in seen else None
-            seen.add(e["kind"])
-            ax.axvline(e["t"], color=colour, linestyle=style, linewidth=0.8, label=label)
+        _event_lines(ax, result.events)
     ax.set_xlabel("t [s]")
     ax.set_ylabel("block rotation [rad]")
     ax.set_title(result.title)
     ax.legend(fontsize="small")
     return ax
+
+
+def loop_simulation(result, ax=None, events=True):
+    """The joint angles (rad) of a :class:`rocking.LoopSimulation` against time, one line per
+    joint that moved, and a vertical line at each event (``events``)."""
+    ax = _axes(ax)
+    for k in range(result.angles.shape[1]):
+        if result.angles[:, k].any():
+            ax.plot(result.t, result.angles[:, k], label=f"joint {k}")
+    if events:
+        _event_lines(ax, result.events)
+    ax.set_xlabel("t [s]")
+    ax.set_ylabel("joint angle [rad]")
+    ax.set_title(result.title)
+    ax.legend(fontsize="small")
+    return ax
+
+
+def _event_lines(ax, events):
+    seen = set()
+    for e in events:
+        colour, style = EVENT_STYLE.get(e["kind"], ("black", "-"))
+        label = e["kind"] if e["kind"] not in seen else None
+        seen.add(e["kind"])
+        ax.axvline(e["t"], color=colour, linestyle=style, linewidth=0.8, label=label)
 
 
 def oas(result, against="p", ax=None, fits=True):

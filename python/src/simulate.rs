@@ -10,10 +10,16 @@ use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
+use rocking::contact::{auto, simulation};
+use rocking::driver::closed::LoopState;
+use rocking::driver::simulate_loop;
 use rocking::driver::{self, History};
 use rocking::ground::excitation::Excitation;
 use rocking::ground::FnMotion;
-use rocking::scene::{self, SceneSpec, Summary};
+use rocking::scene::{
+    self, contact_events, loop_events, loop_joint_angles, AnyScene, ContactHistoryColumns,
+    ContactSummary, LoopScene, LoopSummary, Scene, SceneSpec, Summary,
+};
 
 use crate::errors::value_error;
 use crate::ground::Record;
@@ -34,35 +40,42 @@ pub fn _simulate<'py>(
     name: Option<&str>,
     record: Option<PyRef<'py, Record>>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let (mut scene, scene_name) = match (&path, text) {
+    let (any, scene_name) = match (&path, text) {
         (Some(p), None) => {
             // A missing file is the OSError Python users expect (FileNotFoundError, …).
             std::fs::metadata(p)?;
-            let s = scene::load(p).map_err(|e| value_error(e.to_string()))?;
+            let s = scene::load_any(p).map_err(|e| value_error(e.to_string()))?;
             (s, Some(p.display().to_string()))
         }
         (None, Some(t)) => {
             let spec: SceneSpec =
                 serde_json::from_str(t).map_err(|e| value_error(e.to_string()))?;
             let base = base.unwrap_or_else(|| PathBuf::from("."));
-            let s = scene::build(spec, &base, name.unwrap_or("scene"))
+            let s = scene::build_any(spec, &base, name.unwrap_or("scene"))
                 .map_err(|e| value_error(e.to_string()))?;
             (s, None)
         }
         _ => return Err(value_error("give either a scene path or its JSON text")),
     };
-    // The contact scheme (joints that slide or fly, `rocking simulate`'s drums) has other
-    // outputs; until the package exposes them, refuse rather than run the rigid driver instead.
-    if scene.contact.is_some() {
-        return Err(value_error(
-            "scheme: scenes whose joints slide or fly (scheme \"moreau\" or \"auto\", or on_sliding / on_tension) \
-             run the contact scheme, \
-             which rocking.simulate does not support yet (use `rocking simulate`)",
-        ));
+    let excitation = record
+        .map(|r| {
+            Excitation::record(r.inner.clone()).map_err(|e| value_error(format!("excitation: {e}")))
+        })
+        .transpose()?;
+    let mut scene = match any {
+        AnyScene::Column(s) => s,
+        AnyScene::Loop(mut s) => {
+            if let Some(e) = excitation {
+                s.excitation = e;
+            }
+            return loop_run(py, &s, scene_name);
+        }
+    };
+    if let Some(e) = excitation {
+        scene.excitation = e;
     }
-    if let Some(r) = record {
-        scene.excitation = Excitation::record(r.inner.clone())
-            .map_err(|e| value_error(format!("excitation: {e}")))?;
+    if scene.contact.is_some() {
+        return contact_run(py, &scene, scene_name);
     }
     let (outcome, wall) = py.detach(|| {
         let excitation = &scene.excitation;
@@ -84,6 +97,66 @@ pub fn _simulate<'py>(
     let summary = Summary::of(&scene, scene_name, &outcome, wall);
     d.set_item("summary", to_python(py, &summary)?)?;
     d.set_item("title", &scene.title)?;
+    d.set_item("scheme", "event_driven")?;
+    Ok(d)
+}
+
+/// A scene that chose the contact scheme (joints that slide or fly: `scheme` `"moreau"` or
+/// `"auto"`, `on_sliding`, `on_tension`; docs/multidrum.md), as `rocking simulate` runs it: the
+/// columns of its `history.csv` (`t`, `x`, `y`, `block_rotations`, `slips`), its events and its
+/// summary.
+fn contact_run<'py>(
+    py: Python<'py>,
+    scene: &Scene,
+    scene_name: Option<String>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let options = scene.contact.as_ref().expect("a contact-scheme scene");
+    let (outcome, wall) = py.detach(|| {
+        let excitation = &scene.excitation;
+        let motion = FnMotion(|t| excitation.acceleration(t), excitation.end_time());
+        let started = Instant::now();
+        let outcome = match &scene.auto {
+            Some(rules) => {
+                auto::simulate(&scene.column, &motion, &scene.options, options, rules, None)
+                    .map_err(|e| e.to_string())
+            }
+            None => simulation::simulate(&scene.column, &motion, options, None)
+                .map_err(|e| e.to_string()),
+        };
+        (outcome, started.elapsed().as_secs_f64())
+    });
+    let outcome = outcome.map_err(value_error)?;
+    let d = PyDict::new(py);
+    let columns = outcome
+        .history
+        .as_ref()
+        .filter(|_| scene.output.history)
+        .map(ContactHistoryColumns::of)
+        .unwrap_or(ContactHistoryColumns {
+            n: scene.column.n_interfaces(),
+            ..ContactHistoryColumns::default()
+        });
+    let (n, len) = (columns.n, columns.len());
+    let table = |values: Vec<f64>| {
+        Array2::from_shape_vec((len, n), values)
+            .expect("len × n values")
+            .into_pyarray(py)
+    };
+    d.set_item("t", PyArray1::from_slice(py, &columns.t))?;
+    d.set_item("x", table(columns.x))?;
+    d.set_item("y", table(columns.y))?;
+    d.set_item("block_rotations", table(columns.block_rotation))?;
+    d.set_item("slips", table(columns.slip))?;
+    let events = if scene.output.events {
+        contact_events(&outcome)
+    } else {
+        Vec::new()
+    };
+    d.set_item("events", to_python(py, &events)?)?;
+    let summary = ContactSummary::of(scene, scene_name, &outcome, options.dt, wall);
+    d.set_item("summary", to_python(py, &summary)?)?;
+    d.set_item("title", &scene.title)?;
+    d.set_item("scheme", summary.scheme)?;
     Ok(d)
 }
 
@@ -116,4 +189,50 @@ fn history_arrays(d: &Bound<'_, PyDict>, h: &History) -> PyResult<()> {
             .into_pyarray(py),
     )?;
     Ok(())
+}
+
+/// A closed chain (`"arch"` or `"colonnade"` scene; docs/arches.md) through the loop driver, as
+/// `rocking simulate` runs it: `t` and each joint's signed angle `angles` (`history.csv`), its
+/// events and its summary.
+fn loop_run<'py>(
+    py: Python<'py>,
+    scene: &LoopScene,
+    scene_name: Option<String>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let (outcome, wall) = py.detach(|| {
+        let started = Instant::now();
+        let outcome = simulate_loop(
+            &scene.chain,
+            &scene.excitation,
+            LoopState::at_rest(&scene.chain),
+            &scene.options,
+        );
+        (outcome, started.elapsed().as_secs_f64())
+    });
+    let outcome = outcome.map_err(|e| value_error(e.to_string()))?;
+    let n = scene.chain.n_joints();
+    let (t, angles) = if scene.output.history {
+        loop_joint_angles(&outcome, n)
+    } else {
+        (Vec::new(), Vec::new())
+    };
+    let d = PyDict::new(py);
+    d.set_item("t", PyArray1::from_slice(py, &t))?;
+    d.set_item(
+        "angles",
+        Array2::from_shape_vec((t.len(), n), angles)
+            .expect("len × n angles")
+            .into_pyarray(py),
+    )?;
+    let events = if scene.output.events {
+        loop_events(&outcome)
+    } else {
+        Vec::new()
+    };
+    d.set_item("events", to_python(py, &events)?)?;
+    let summary = LoopSummary::of(scene, scene_name, &outcome, wall);
+    d.set_item("summary", to_python(py, &summary)?)?;
+    d.set_item("title", &scene.title)?;
+    d.set_item("scheme", "loop")?;
+    Ok(d)
 }

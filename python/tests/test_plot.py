@@ -35,6 +35,24 @@ def test_simulation_plot(plt, root):
     assert ax.get_title() == r.title
 
 
+def test_loop_and_contact_plots(plt, root):
+    arch = rocking.simulate(root / "examples/scenes/arch_half_sine.json")
+    ax = arch.plot()
+    moved = [k for k in range(arch.angles.shape[1]) if arch.angles[:, k].any()]
+    lines = ax.get_lines()
+    assert len(lines) == len(moved) + len(arch.events)  # a line per joint that moved and per event
+    np.testing.assert_array_equal(lines[0].get_ydata(), arch.angles[:, moved[0]])
+    assert ax.get_ylabel() == "joint angle [rad]"
+    scene = {"blocks": [{"width": 1.0, "height": 1.0, "mass": 2500}] * 3, "friction": 0.5,
+             "on_sliding": "slide", "excitation": {"type": "half_sine", "amplitude": 6.0, "duration": 0.5},
+             "duration": 1.0, "dt": 0.001}
+    drums = rocking.simulate(scene)
+    assert isinstance(drums, rocking.ContactSimulation)
+    ax = drums.plot(events=False)
+    assert len(ax.get_lines()) == 3
+    np.testing.assert_array_equal(ax.get_lines()[2].get_ydata(), drums.block_rotations[:, 2])
+
+
 def test_oas_plots(plt, root):
     o = rocking.oas(root / "examples/records/synthetic.AT2", levels=16, sizes=40)
     for against, x in [("p", o.p), ("f", o.f), ("size", o.size)]:

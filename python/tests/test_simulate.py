@@ -180,11 +180,83 @@ def test_missing_fields_files_and_types(root, tmp_path):
         rocking.simulate({"blocks": object()})
 
 
-def test_a_contact_scheme_scene_is_refused_not_run_rigidly(root):
-    """A scene whose joints slide or fly runs the contact scheme in the CLI; rocking.simulate does
-    not support it yet and must say so rather than run the rigid driver."""
-    path = root / "examples/scenes/drums_sliding_column.json"
-    if not path.exists():
-        pytest.skip("no contact-scheme scene in this checkout")
-    with pytest.raises(rocking.RockingError, match="contact scheme"):
-        rocking.simulate(path)
+def contact_history_csv(r):
+    n = r.block_rotations.shape[1]
+    head = ["t"] + [f"{c}_{k}" for c in ("x", "y", "block_rotation", "slip") for k in range(n)]
+    lines = [",".join(head)]
+    for i in range(len(r.t)):
+        row = [rust_display(r.t[i])]
+        row += [rust_display(v) for a in (r.x, r.y, r.block_rotations, r.slips) for v in a[i]]
+        lines.append(",".join(row))
+    return "\n".join(lines) + "\n"
+
+
+@pytest.mark.parametrize("scheme", ["moreau", "auto"])
+def test_a_contact_scheme_scene_is_run_as_the_cli(root, tmp_path, scheme):
+    """A scene whose joints slide or fly runs the contact scheme (Moreau–Jean, or the automatic
+    scheme), as `rocking simulate` does: the same events, summary (wall time aside) and history
+    to the bit."""
+    cli = os.environ.get("ROCKING_CLI") or str(root / "target" / "release" / "rocking")
+    if not os.path.exists(cli):
+        pytest.skip("no rocking CLI (cargo build --release -p rocking-cli) and ROCKING_CLI unset")
+    scene = json.loads((root / "examples/scenes/drums_sliding_column.json").read_text())
+    scene["excitation"]["path"] = str(root / "examples/records/synthetic.AT2")
+    scene.update(duration=8.0, scheme=scheme)
+    path = tmp_path / "scene.json"
+    path.write_text(json.dumps(scene))
+    subprocess.run([cli, "simulate", str(path), "--out", str(tmp_path)], check=True, capture_output=True)
+    r = rocking.simulate(path)
+    assert isinstance(r, rocking.ContactSimulation) and r.scheme == scheme
+    cli_events = [json.loads(line) for line in (tmp_path / "events.jsonl").read_text().splitlines()]
+    assert r.events == cli_events
+    assert {"impact", "slip_start"} <= {e["kind"] for e in r.events}
+    cli_summary = json.loads((tmp_path / "summary.json").read_text())
+    summary = dict(r.summary)
+    assert summary.pop("wall_time_s") >= 0.0 and cli_summary.pop("wall_time_s") >= 0.0
+    assert summary == cli_summary
+    assert summary["scheme"] == scheme and summary["t_end"] == 8.0
+    assert contact_history_csv(r) == (tmp_path / "history.csv").read_text()
+    n, samples = 5, len(r.t)
+    for a in (r.x, r.y, r.block_rotations, r.slips):
+        assert a.shape == (samples, n) and a.dtype == np.float64
+    np.testing.assert_array_equal(r.residual_slip, r.slips[-1])
+    assert np.all(r.peak_slip >= np.abs(r.slips).max(axis=0))
+    assert r.stop_reason == "duration" and not r.overturned
+    # The same scene as a dict, its record path relative to `base`.
+    scene["excitation"]["path"] = "examples/records/synthetic.AT2"
+    d = rocking.simulate(scene, base=root)
+    assert d.events == r.events
+    np.testing.assert_array_equal(d.slips, r.slips)
+
+
+def test_an_arch_and_a_colonnade_run_as_the_cli(root, tmp_path):
+    """A closed chain (an arch, a capped colonnade) runs the loop driver as `rocking simulate`
+    does: the same events, summary (wall time aside) and joint angles to the bit."""
+    cli = os.environ.get("ROCKING_CLI") or str(root / "target" / "release" / "rocking")
+    if not os.path.exists(cli):
+        pytest.skip("no rocking CLI (cargo build --release -p rocking-cli) and ROCKING_CLI unset")
+    colonnade = {"colonnade": {"width": 0.5, "height": 3.0, "column_mass": 1000, "span": 3.0,
+                               "beam_height": 0.5, "beam_mass": 2000},
+                 "excitation": {"type": "half_sine", "amplitude": 4.0, "duration": 0.6},
+                 "duration": 3.0, "dt": 0.001}
+    (tmp_path / "colonnade.json").write_text(json.dumps(colonnade))
+    for i, path in enumerate([root / "examples/scenes/arch_half_sine.json", tmp_path / "colonnade.json"]):
+        out = tmp_path / f"out{i}"
+        subprocess.run([cli, "simulate", str(path), "--out", str(out)], check=True, capture_output=True)
+        r = rocking.simulate(path)
+        assert isinstance(r, rocking.LoopSimulation) and r.scheme == "loop"
+        assert r.events == [json.loads(line) for line in (out / "events.jsonl").read_text().splitlines()]
+        cli_summary = json.loads((out / "summary.json").read_text())
+        summary = dict(r.summary)
+        assert summary.pop("wall_time_s") >= 0.0 and cli_summary.pop("wall_time_s") >= 0.0
+        assert summary == cli_summary
+        lines = ["t," + ",".join(f"angle_{k}" for k in range(r.angles.shape[1]))]
+        lines += [",".join(rust_display(v) for v in [t, *row]) for t, row in zip(r.t, r.angles)]
+        assert "\n".join(lines) + "\n" == (out / "history.csv").read_text()
+        assert r.collapsed and r.t_end < 3.0 and len(r.events_of("collapsed")) == 1
+        assert r.hinges and all(face in (-1, 1) for _, face in r.hinges)
+    # The arch's first mechanism (docs/arches.md 2c): joints 3, 15, 9, 20 open first.
+    arch = rocking.simulate(root / "examples/scenes/arch_half_sine.json")
+    first = arch.events_of("opening")[0]
+    assert {k for k, s in enumerate(first["statuses"]) if s != 0} == {3, 9, 15, 20}
+    assert arch.angles.shape[1] == 21

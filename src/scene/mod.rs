@@ -27,11 +27,17 @@ use serde::Deserialize;
 
 pub mod closed;
 mod contact;
+mod contact_outputs;
+mod loop_outputs;
 mod summary;
 use crate::contact::auto::AutoOptions;
 use crate::contact::simulation::DrumOptions;
 pub use closed::{LoopScene, LoopShape};
 pub use contact::{FrictionSpec, SchemeChoice};
+pub use contact_outputs::{
+    contact_events, mode_name, stop_name, ContactEnergy, ContactHistoryColumns, ContactSummary,
+};
+pub use loop_outputs::{hinges, loop_event_name, loop_events, loop_joint_angles, LoopSummary};
 pub use summary::{Energy, Summary};
 
 /// One block, bottom to top.

@@ -9,15 +9,15 @@
 //! `--plot FILE` draws the chain in its closed geometry with every hinge that opened marked at its
 //! pivot corner, and the joint angles against time in `FILE_history.EXT`.
 
-use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use rocking::driver::closed::{LoopEventKind, LoopOutcome, LoopState};
 use rocking::driver::simulate_loop;
-use rocking::scene::LoopScene;
-use serde::Serialize;
+use rocking::scene::{
+    hinges, loop_event_name, loop_events, loop_joint_angles, LoopScene, LoopSummary,
+};
 
 use crate::output::{json_tree, write_atomic};
 use crate::plot::{Chart, Marker, Series, Style, COLORS};
@@ -47,31 +47,14 @@ pub fn run(
     }
     if scene.output.events {
         let mut lines = String::new();
-        for e in &outcome.events {
-            let mut line = serde_json::json!({
-                "t": e.time, "kind": kind_name(&e.kind), "statuses": e.statuses,
-            });
-            if let LoopEventKind::Closing {
-                joints,
-                kinetic_before,
-                kinetic_after,
-            }
-            | LoopEventKind::Locked {
-                joints,
-                kinetic_before,
-                kinetic_after,
-            } = &e.kind
-            {
-                line["joints"] = serde_json::json!(joints);
-                line["kinetic_before"] = serde_json::json!(kinetic_before);
-                line["kinetic_after"] = serde_json::json!(kinetic_after);
-            }
-            lines.push_str(&line.to_string());
+        for e in loop_events(&outcome) {
+            lines.push_str(&e.to_string());
             lines.push('\n');
         }
         write_atomic(&out.join("events.jsonl"), lines.as_bytes())?;
     }
-    let summary = json_tree(&Summary::of(scene, scene_path, &outcome, wall))?;
+    let path = Some(scene_path.display().to_string());
+    let summary = json_tree(&LoopSummary::of(scene, path, &outcome, wall))?;
     let text = serde_json::to_string_pretty(&summary).map_err(|e| e.to_string())?;
     write_atomic(&out.join("summary.json"), format!("{text}\n").as_bytes())?;
     if let Some(p) = plot {
@@ -104,89 +87,22 @@ pub fn history_path(p: &Path) -> PathBuf {
     p.with_file_name(format!("{stem}_history.{ext}"))
 }
 
-fn kind_name(k: &LoopEventKind) -> &'static str {
-    match k {
-        LoopEventKind::Opening => "opening",
-        LoopEventKind::Closing { .. } => "closing",
-        LoopEventKind::Locked { .. } => "locked",
-        LoopEventKind::Settled => "settled",
-        LoopEventKind::Collapsed => "collapsed",
-    }
-}
-
 /// The history as CSV: t and per joint its signed angle (rad).
 pub fn history_csv(o: &LoopOutcome, n: usize) -> String {
+    let (t, angles) = loop_joint_angles(o, n);
     let mut s = String::from("t");
     for k in 0..n {
         let _ = write!(s, ",angle_{k}");
     }
     s.push('\n');
-    for (t, phi) in &o.history {
+    for (t, row) in t.iter().zip(angles.chunks_exact(n.max(1))) {
         let _ = write!(s, "{t}");
-        for k in 0..n {
-            let _ = write!(s, ",{}", phi[k] + phi[n + k]);
+        for v in row {
+            let _ = write!(s, ",{v}");
         }
         s.push('\n');
     }
     s
-}
-
-/// Every (joint, face) that was open after some event: `-1` about `R_k` (an arch's intrados),
-/// `+1` about `L_k` (extrados).
-fn hinges(o: &LoopOutcome) -> Vec<(usize, i8)> {
-    let mut seen = std::collections::BTreeSet::new();
-    for e in &o.events {
-        for (k, &s) in e.statuses.iter().enumerate() {
-            if s != 0 {
-                seen.insert((k, s));
-            }
-        }
-    }
-    seen.into_iter().collect()
-}
-
-/// `summary.json`.
-#[derive(Serialize)]
-struct Summary<'a> {
-    scene: String,
-    title: &'a str,
-    excitation: String,
-    collapsed: bool,
-    t_end: f64,
-    peak_angle: f64,
-    /// Events by kind.
-    events: BTreeMap<&'static str, usize>,
-    /// `[joint, face]` of every hinge that opened (`-1`: about `R_k`, `+1`: about `L_k`).
-    hinges: Vec<(usize, i8)>,
-    statuses_end: Vec<i8>,
-    max_closure_residual: f64,
-    max_step_drift: f64,
-    dt: f64,
-    wall_time_s: f64,
-}
-
-impl<'a> Summary<'a> {
-    fn of(scene: &'a LoopScene, path: &Path, o: &LoopOutcome, wall: f64) -> Summary<'a> {
-        let mut events = BTreeMap::new();
-        for e in &o.events {
-            *events.entry(kind_name(&e.kind)).or_insert(0) += 1;
-        }
-        Summary {
-            scene: path.display().to_string(),
-            title: &scene.title,
-            excitation: scene.excitation.describe(),
-            collapsed: o.collapsed,
-            t_end: o.state.time,
-            peak_angle: o.peak_angle,
-            events,
-            hinges: hinges(o),
-            statuses_end: o.state.statuses.iter().map(|s| s.as_i8()).collect(),
-            max_closure_residual: o.max_closure_residual,
-            max_step_drift: o.max_step_drift,
-            dt: scene.options.dt,
-            wall_time_s: wall,
-        }
-    }
 }
 
 /// The chain in its closed geometry (each joint's face, the corners joined in chain order: an
@@ -291,7 +207,7 @@ fn history_chart(scene: &LoopScene, o: &LoopOutcome) -> Result<Chart, String> {
         };
         chart.markers.push(Marker {
             x: e.time,
-            kind: kind_name(&e.kind).to_string(),
+            kind: loop_event_name(&e.kind).to_string(),
             color,
         });
     }

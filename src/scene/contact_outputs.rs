@@ -1,0 +1,240 @@
+//! The outputs of a scene run by the contact scheme (Moreau–Jean or `"scheme": "auto"`,
+//! `src/contact/`): `summary.json`, the objects of `events.jsonl` and the columns of
+//! `history.csv` — one definition for `rocking simulate` and the Python package's
+//! `rocking.simulate`.
+
+use std::collections::BTreeMap;
+
+use serde::Serialize;
+use serde_json::{json, Value};
+
+use super::Scene;
+use crate::contact::simulation::{DrumEventKind, DrumHistory, DrumOutcome, DrumStop, JointMode};
+
+/// What a contact-scheme run of a scene reports (`summary.json`): the event-driven summary's
+/// fields where the two share a meaning, plus the slips, the top's displacement, the joints'
+/// modes and the scheme's energy accounts.
+#[derive(Debug, Serialize)]
+pub struct ContactSummary<'a> {
+    /// The scene file's path; `None` (JSON `null`) for a scene given as text.
+    pub scene: Option<String>,
+    pub title: &'a str,
+    /// The excitation, described in words.
+    pub excitation: String,
+    /// `"moreau"` or `"auto"`.
+    pub scheme: &'static str,
+    pub overturned: bool,
+    /// Time at which the run ended (s).
+    pub t_end: f64,
+    pub impacts: usize,
+    /// Why the run stopped ([`stop_name`]).
+    pub stop_reason: &'static str,
+    /// The joint (or, for `fallen`, the drum) the stop concerns, if any.
+    pub stop_interface: Option<usize>,
+    /// Largest absolute rotation of each drum (rad).
+    pub peak_block_rotation: &'a [f64],
+    /// Largest absolute slip of each joint (m).
+    pub peak_slip: &'a [f64],
+    /// Slip of each joint at the end (m, signed).
+    pub residual_slip: &'a [f64],
+    /// Largest absolute horizontal displacement of the top drum's centre (m).
+    pub peak_top_displacement: f64,
+    /// The joints' modes at the end ([`mode_name`]).
+    pub modes_end: Vec<&'static str>,
+    /// Events by kind (kinds that occurred).
+    pub events: BTreeMap<&'static str, usize>,
+    pub energy: ContactEnergy,
+    /// Scheme "auto": the hand-overs and the simulated time in the event-driven driver (s).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub scheme_switches: Option<usize>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub time_event_driven: Option<f64>,
+    /// The scheme's time step (s).
+    pub dt: f64,
+    /// Wall-clock time of the run (s).
+    pub wall_time_s: f64,
+}
+
+/// The energy balance: `ground_work = potential_change + kinetic_change + impact + friction +
+/// residual`; `residual` is the scheme's error (`persistent_contact + projection` up to
+/// round-off), `relative_residual` against the largest energy involved.
+#[derive(Debug, Serialize)]
+pub struct ContactEnergy {
+    pub ground_work: f64,
+    pub potential_change: f64,
+    pub kinetic_change: f64,
+    pub impact: f64,
+    pub friction: f64,
+    pub persistent_contact: f64,
+    pub projection: f64,
+    pub residual: f64,
+    pub relative_residual: f64,
+}
+
+/// The kinds counted in [`DrumOutcome::event_counts`], in its order.
+const COUNTED_KINDS: [DrumEventKind; 7] = [
+    DrumEventKind::Opening,
+    DrumEventKind::Impact,
+    DrumEventKind::SlipStart,
+    DrumEventKind::SlipStop,
+    DrumEventKind::LiftOff,
+    DrumEventKind::Landing,
+    DrumEventKind::Overturned,
+];
+
+impl<'a> ContactSummary<'a> {
+    /// The summary of `o`, the contact-scheme run of `scene` (read from `path`, if from a file)
+    /// at step `dt` that took `wall_time_s`.
+    pub fn of(
+        scene: &'a Scene,
+        path: Option<String>,
+        o: &'a DrumOutcome,
+        dt: f64,
+        wall_time_s: f64,
+    ) -> ContactSummary<'a> {
+        let (stop_reason, stop_interface) = stop_name(&o.stop);
+        let events = COUNTED_KINDS
+            .iter()
+            .zip(o.event_counts)
+            .filter(|(_, c)| *c > 0)
+            .map(|(k, c)| (k.name(), c))
+            .collect();
+        let e = &o.energy;
+        let a = &e.accounts;
+        ContactSummary {
+            scene: path,
+            title: &scene.title,
+            excitation: scene.excitation.describe(),
+            scheme: if scene.auto.is_some() {
+                "auto"
+            } else {
+                "moreau"
+            },
+            overturned: o.overturned,
+            t_end: o.t_end,
+            impacts: o.event_counts[1],
+            stop_reason,
+            stop_interface,
+            peak_block_rotation: &o.peak_rotation,
+            peak_slip: &o.peak_slip,
+            residual_slip: &o.residual_slip,
+            peak_top_displacement: o.peak_top_displacement,
+            modes_end: o.modes_end.iter().map(|m| mode_name(*m)).collect(),
+            events,
+            energy: ContactEnergy {
+                ground_work: a.ground_work,
+                potential_change: e.potential_change,
+                kinetic_change: e.kinetic_change,
+                impact: a.impact,
+                friction: a.friction,
+                persistent_contact: a.persistent_contact,
+                projection: a.projection,
+                residual: e.residual(),
+                relative_residual: e.residual() / e.scale(),
+            },
+            scheme_switches: scene.auto.map(|_| o.switches.len()),
+            time_event_driven: scene.auto.map(|_| o.time_event_driven),
+            dt,
+            wall_time_s,
+        }
+    }
+}
+
+/// The objects of `events.jsonl`: `t`, `kind`, `joint`; a scheme switch (scheme `"auto"`) with
+/// `from`, `to`, `why`, `kinetic_before`, `kinetic_after`, `slip_dropped` in place of `joint`.
+pub fn contact_events(o: &DrumOutcome) -> Vec<Value> {
+    let mut switches = o.switches.iter();
+    o.events
+        .iter()
+        .filter_map(|e| {
+            if e.kind == DrumEventKind::SchemeSwitch {
+                switches.next().map(|s| {
+                    json!({"t": e.t, "kind": e.kind.name(),
+                        "from": s.from.name(), "to": s.to.name(), "why": s.why,
+                        "kinetic_before": s.kinetic_before, "kinetic_after": s.kinetic_after,
+                        "slip_dropped": s.slip_dropped})
+                })
+            } else {
+                Some(json!({"t": e.t, "kind": e.kind.name(), "joint": e.joint}))
+            }
+        })
+        .collect()
+}
+
+/// The stop as `summary.json` names it (the event-driven names where they mean the same), and
+/// the joint (the drum for `fallen`) it concerns.
+pub fn stop_name(s: &DrumStop) -> (&'static str, Option<usize>) {
+    match *s {
+        DrumStop::Duration => ("duration", None),
+        DrumStop::Overturned { joint } => ("overturned", Some(joint)),
+        DrumStop::Fallen { drum } => ("fallen", Some(drum)),
+        DrumStop::SlidOff { joint } => ("slid_off", Some(joint)),
+        DrumStop::Sliding { joint } => ("sliding", Some(joint)),
+        DrumStop::Tension { joint } => ("tension", Some(joint)),
+    }
+}
+
+/// A joint's mode as the outputs name it.
+pub fn mode_name(m: JointMode) -> &'static str {
+    match m {
+        JointMode::Closed => "closed",
+        JointMode::RockingRight => "rocking_right",
+        JointMode::RockingLeft => "rocking_left",
+        JointMode::Flying => "flying",
+    }
+}
+
+/// The columns of `history.csv`, each row-major (`samples × drums`, `samples × joints`).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct ContactHistoryColumns {
+    /// Drums (= joints).
+    pub n: usize,
+    /// Sample times (s).
+    pub t: Vec<f64>,
+    /// Each drum's centre, horizontal displacement from the first sample (m).
+    pub x: Vec<f64>,
+    /// Each drum's centre, vertical displacement from the first sample (m).
+    pub y: Vec<f64>,
+    /// Each drum's rotation (rad, counter-clockwise positive as the driver's).
+    pub block_rotation: Vec<f64>,
+    /// Each joint's slip (m).
+    pub slip: Vec<f64>,
+}
+
+impl ContactHistoryColumns {
+    /// The columns of a run's history.
+    pub fn of(h: &DrumHistory) -> Self {
+        let n = h.n;
+        let rows = h.t.len();
+        let mut c = ContactHistoryColumns {
+            n,
+            t: h.t.clone(),
+            x: Vec::with_capacity(rows * n),
+            y: Vec::with_capacity(rows * n),
+            block_rotation: Vec::with_capacity(rows * n),
+            slip: h.slip[..rows * n].to_vec(),
+        };
+        if rows == 0 || n == 0 {
+            return c;
+        }
+        let q0 = &h.q[..3 * n];
+        for q in h.q.chunks_exact(3 * n).take(rows) {
+            for k in 0..n {
+                c.x.push(q[3 * k] - q0[3 * k]);
+                c.y.push(q[3 * k + 1] - q0[3 * k + 1]);
+                c.block_rotation.push(q[3 * k + 2]);
+            }
+        }
+        c
+    }
+
+    /// Number of samples.
+    pub fn len(&self) -> usize {
+        self.t.len()
+    }
+
+    /// No samples.
+    pub fn is_empty(&self) -> bool {
+        self.t.is_empty()
+    }
+}
