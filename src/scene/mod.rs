@@ -13,14 +13,13 @@
 //! the scene file. A closed chain (`"arch"` or `"colonnade"` in place of `"blocks"`,
 //! [`closed`]) is read by [`load_any`].
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use crate::driver::{
     EventLocator, InitialState, Integrator, PhysicsOptions, Recording, SimulationOptions,
     SteppingOptions, StoppingOptions,
 };
-use crate::ground::excitation::{Excitation, Pulse};
-use crate::ground::records::{self, PlainFormat};
+use crate::ground::excitation::Excitation;
 use crate::model::column::{Block, Column};
 use crate::model::cone::{ModelOptions, Solver};
 use serde::Deserialize;
@@ -28,6 +27,7 @@ use serde::Deserialize;
 pub mod closed;
 mod contact;
 mod contact_outputs;
+mod excitation;
 mod loop_outputs;
 mod summary;
 use crate::contact::auto::AutoOptions;
@@ -37,6 +37,8 @@ pub use contact::{FrictionSpec, SchemeChoice};
 pub use contact_outputs::{
     contact_events, mode_name, stop_name, ContactEnergy, ContactHistoryColumns, ContactSummary,
 };
+use excitation::excitation;
+pub use excitation::ExcitationSpec;
 pub use loop_outputs::{hinges, loop_event_name, loop_events, loop_joint_angles, LoopSummary};
 pub use summary::{Energy, Summary};
 
@@ -51,50 +53,6 @@ pub struct BlockSpec {
     pub inertia: Option<f64>,
     #[serde(default)]
     pub contact_width: Option<f64>,
-}
-
-/// The ground motion.
-#[derive(Debug, Deserialize)]
-#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
-pub enum ExcitationSpec {
-    /// No excitation (free rocking from `initial_angles`).
-    None,
-    /// `amplitude · sin(π t / duration)` on `[0, duration]` (thesis Fig. 8a).
-    HalfSine { amplitude: f64, duration: f64 },
-    /// One full period of a sine; `duration` is the WHOLE period (each lobe lasts duration/2;
-    /// the thesis's `t_p` of Fig. 8b is the lobe).
-    FullSine { amplitude: f64, duration: f64 },
-    /// `count` consecutive half sines of alternating sign, each lasting `duration` (thesis Fig. 8c:
-    /// three half sines).
-    HalfSines {
-        amplitude: f64,
-        duration: f64,
-        count: u32,
-    },
-    /// Constant `amplitude` on `[0, duration)`.
-    Rectangular { amplitude: f64, duration: f64 },
-    /// Symmetric triangle peaking at `duration / 2`.
-    Triangular { amplitude: f64, duration: f64 },
-    /// Ricker wavelet of peak `amplitude` and central `frequency` (Hz).
-    Ricker { amplitude: f64, frequency: f64 },
-    /// Mavroeidis–Papageorgiou (2003) pulse of peak acceleration `amplitude`.
-    MavroeidisPapageorgiou {
-        amplitude: f64,
-        frequency: f64,
-        gamma: f64,
-        nu: f64,
-    },
-    /// A recorded motion: PEER `.AT2` (in g), or plain text (one column with `dt`, or two
-    /// columns t, a) in m/s² unless `units` is "g". Scaled to `scale_to_pga` [m/s²] if given.
-    Record {
-        path: PathBuf,
-        #[serde(default)]
-        scale_to_pga: Option<f64>,
-        #[serde(default)]
-        dt: Option<f64>,
-        #[serde(default)]
-        units: Option<String>,
-    },
 }
 
 /// Integrator choice: a name, or an object with parameters.
@@ -415,150 +373,6 @@ pub fn build(spec: SceneSpec, base: &Path, name: &str) -> Result<Scene, SceneErr
         auto,
         output: spec.output,
     })
-}
-
-fn excitation(spec: &ExcitationSpec, base: &Path) -> Result<Excitation, SceneError> {
-    let pulse = |p: Result<Pulse, crate::ground::excitation::ExcitationError>| {
-        p.and_then(Excitation::pulse)
-            .map_err(|e| err("excitation", e))
-    };
-    let positive = |field: &str, v: f64| {
-        if v.is_finite() && v > 0.0 {
-            Ok(())
-        } else {
-            Err(err(
-                &format!("excitation.{field}"),
-                format!("{v}: must be a finite number greater than zero"),
-            ))
-        }
-    };
-    let finite = |field: &str, v: f64| {
-        if v.is_finite() {
-            Ok(())
-        } else {
-            Err(err(
-                &format!("excitation.{field}"),
-                format!("{v}: must be finite"),
-            ))
-        }
-    };
-    match spec {
-        ExcitationSpec::None | ExcitationSpec::Record { .. } => {}
-        ExcitationSpec::HalfSine {
-            amplitude,
-            duration,
-        }
-        | ExcitationSpec::FullSine {
-            amplitude,
-            duration,
-        }
-        | ExcitationSpec::Rectangular {
-            amplitude,
-            duration,
-        }
-        | ExcitationSpec::Triangular {
-            amplitude,
-            duration,
-        }
-        | ExcitationSpec::HalfSines {
-            amplitude,
-            duration,
-            ..
-        } => {
-            finite("amplitude", *amplitude)?;
-            positive("duration", *duration)?;
-        }
-        ExcitationSpec::Ricker {
-            amplitude,
-            frequency,
-        } => {
-            finite("amplitude", *amplitude)?;
-            positive("frequency", *frequency)?;
-        }
-        ExcitationSpec::MavroeidisPapageorgiou {
-            amplitude,
-            frequency,
-            nu,
-            ..
-        } => {
-            finite("amplitude", *amplitude)?;
-            positive("frequency", *frequency)?;
-            finite("nu", *nu)?;
-        }
-    }
-    if let ExcitationSpec::HalfSines { count: 0, .. } = spec {
-        return Err(err("excitation.count", "0: must be >= 1"));
-    }
-    match spec {
-        ExcitationSpec::None => Ok(Excitation::None),
-        ExcitationSpec::HalfSine {
-            amplitude,
-            duration,
-        } => pulse(Pulse::half_sine(*amplitude, *duration)),
-        ExcitationSpec::FullSine {
-            amplitude,
-            duration,
-        } => pulse(Pulse::full_sine(*amplitude, 0.5 * duration)),
-        ExcitationSpec::HalfSines {
-            amplitude,
-            duration,
-            count,
-        } => pulse(Pulse::half_sines(*amplitude, *duration, *count)),
-        ExcitationSpec::Rectangular {
-            amplitude,
-            duration,
-        } => pulse(Pulse::rectangular(*amplitude, *duration)),
-        ExcitationSpec::Triangular {
-            amplitude,
-            duration,
-        } => pulse(Pulse::triangular(*amplitude, *duration)),
-        ExcitationSpec::Ricker {
-            amplitude,
-            frequency,
-        } => pulse(Pulse::ricker(*amplitude, *frequency)),
-        ExcitationSpec::MavroeidisPapageorgiou {
-            amplitude,
-            frequency,
-            gamma,
-            nu,
-        } => pulse(Pulse::mavroeidis_papageorgiou(
-            *amplitude, *frequency, *gamma, *nu,
-        )),
-        ExcitationSpec::Record {
-            path,
-            scale_to_pga,
-            dt,
-            units,
-        } => {
-            let full = if path.is_absolute() {
-                path.clone()
-            } else {
-                base.join(path)
-            };
-            let mut format = PlainFormat {
-                dt: *dt,
-                ..PlainFormat::default()
-            };
-            match units.as_deref() {
-                None | Some("m/s2") | Some("m/s^2") => {}
-                Some("g") => format = format.in_g(),
-                Some(other) => {
-                    return Err(err(
-                        "excitation.units",
-                        format!("unknown units {other:?} (m/s2, g)"),
-                    ))
-                }
-            }
-            let mut record =
-                records::read_record(&full, &format).map_err(|e| err("excitation.path", e))?;
-            if let Some(target) = scale_to_pga {
-                record = record
-                    .scaled_to_pga(*target)
-                    .map_err(|e| err("excitation.scale_to_pga", e))?;
-            }
-            Excitation::record(record).map_err(|e| err("excitation", e))
-        }
-    }
 }
 
 #[cfg(test)]
