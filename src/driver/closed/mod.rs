@@ -79,7 +79,7 @@ mod state;
 
 pub use equations::LoopEquations;
 pub use projection::{project_positions, project_rates};
-pub use state::{LoopError, LoopEvent, LoopEventKind, LoopOptions, LoopOutcome, LoopState};
+pub use state::{LoopError, LoopEvent, LoopEventKind, LoopOptions, LoopOutcome, LoopState, Screen};
 
 use crate::chain::Chain;
 use crate::ground::GroundMotion;
@@ -201,6 +201,8 @@ impl<'a> Runner<'a> {
                 max_closure_residual: 0.0,
                 max_step_drift: 0.0,
                 history: Vec::new(),
+                moving_checks: 0,
+                screened: 0,
             },
         }
     }

@@ -2,16 +2,49 @@
 //! reaction test, SPEC §9), and the interval of ground accelerations the closed loop at rest
 //! resists.
 
-use super::{LoopError, LoopEventKind, LoopState, Runner};
+use super::{codes, LoopError, LoopEventKind, LoopState, Runner, Screen};
 use crate::model::configuration::Status;
 use crate::model::constrained::opening_model_constrained;
+
+/// The screen's margin: every closed DOF's multiplier must exceed this share of the largest
+/// generalised force in its optimality condition (`|(M a)_d|`, `|q_d + f_d|`, `|(Gᵀμ)_d|`), far
+/// above the round-off of both the screen and the model (about 1e-15 of it), so that the
+/// model's answer cannot differ; closer calls go to the model.
+const SCREEN_MARGIN: f64 = 1e-9;
 
 impl Runner<'_> {
     /// The opening model at `s` under `ag`: adopts its configuration if it differs (new joints at
     /// zero angle) and, from rest, only if it moves something. Returns whether it changed.
     pub(super) fn opening(&mut self, s: &mut LoopState, ag: f64) -> Result<bool, LoopError> {
-        let (statuses, moves) = self.choice(s, ag)?;
         let moving = s.rates.iter().any(|&r| r != 0.0);
+        // While moving, the screen proves where the answer is the current configuration.
+        self.out.moving_checks += usize::from(moving);
+        let screened = moving && self.options.screen != Screen::Off && {
+            let open = s.open_dofs();
+            let x: Vec<f64> = open.iter().map(|&d| s.phi[d]).collect();
+            let v: Vec<f64> = open.iter().map(|&d| s.rates[d]).collect();
+            let holds = self
+                .equations
+                .current_holds(&s.statuses, &open, ag, &x, &v, SCREEN_MARGIN);
+            self.out.screened += usize::from(holds);
+            holds
+        };
+        if screened && self.options.screen == Screen::On {
+            return Ok(false);
+        }
+        let (statuses, moves) = match self.choice(s, ag) {
+            Ok(c) => c,
+            Err(e) if screened => panic!("loop screen (verify) at t = {}: {e}", s.time),
+            Err(e) => return Err(e),
+        };
+        if screened && statuses != s.statuses {
+            panic!(
+                "loop screen (verify) at t = {}: the screen kept {:?}, the opening model chose {:?}",
+                s.time,
+                codes(&s.statuses),
+                codes(&statuses)
+            );
+        }
         // From rest: adopt what the model chose when it moves something; while moving: adopt a
         // different configuration.
         if (!moving && moves) || (moving && statuses != s.statuses) {
