@@ -76,6 +76,8 @@ mod locate;
 mod opening;
 mod projection;
 mod state;
+#[cfg(test)]
+mod tests;
 
 pub use equations::LoopEquations;
 pub use projection::{project_positions, project_rates};
@@ -285,6 +287,17 @@ impl<'a> Runner<'a> {
                 s.time += dt;
                 continue;
             }
+            // At rest, the state the step starts from (angles, statuses, events and history
+            // recorded so far), to recognise a step the loop rests through (below).
+            let rest_start = at_rest.then(|| {
+                (
+                    s.time,
+                    s.phi.clone(),
+                    s.statuses.clone(),
+                    self.out.events.len(),
+                    self.out.history.len(),
+                )
+            });
             if at_rest && !self.opening(&mut s, ag_now)? {
                 if reference {
                     self.resisted = Some(self.resisted.map_or((ag_now, ag_now), |(lo, hi)| {
@@ -328,6 +341,25 @@ impl<'a> Runner<'a> {
                 };
                 let kinetic_after = self.close(&mut s, &step)?;
                 self.settle(&mut s, kinetic_after);
+                // From rest, the mechanism the opening model chose under `a_g(t)` closed again at
+                // the step's start (its depths' cubic never rises: the ground acceleration falls
+                // back inside what the loop resists within the step, e.g. a record grazing `λ g`)
+                // and the loop is back in the very state the step started from. Repeating it
+                // would never advance (`LoopError::Stalled` after 100 events): the loop rests
+                // through this step, as its flight, shorter than the step, ends in sustained
+                // contact (the lock's argument). Nothing happened: its events are dropped.
+                if let Some((t0, phi0, statuses0, events0, history0)) = &rest_start {
+                    if s.time == *t0
+                        && s.rates.iter().all(|&r| r == 0.0)
+                        && s.phi == *phi0
+                        && s.statuses == *statuses0
+                    {
+                        self.out.events.truncate(*events0);
+                        self.out.history.truncate(*history0);
+                        s.time += dt;
+                        continue;
+                    }
+                }
                 continue;
             }
             s.time += dt;
