@@ -42,7 +42,11 @@
 //!   another microseconds later, each closing opening the next fan (docs/arches.md §2b);
 //! - **opening while moving**: after every accepted step the opening model is asked with the
 //!   current configuration; if it prefers another (a new hinge), the new joints open at zero
-//!   angle;
+//!   angle. Where the current mechanism satisfies the model's optimality conditions with a
+//!   margin, its answer is the current configuration and it is not called ([`Screen`], exact);
+//! - **a step from rest whose opening closes at once** (the mechanism the model opened under
+//!   `a_g(t)` is back in closure at the step's start and the loop settles into the state it
+//!   started from) is rested through, rather than repeated at the same instant;
 //! - **settling**: when the kinetic energy after an impact falls below
 //!   [`LoopOptions::settle_ratio`] times the largest kinetic energy of the run, the rates are
 //!   set to zero (at rest; the closing joints are then closed, and the loop is closed outright
