@@ -4,7 +4,8 @@
 //!
 //! `cargo run --release --example arch_record -- [duration_s] [pga_g|recorded] [dt_s]`
 //! (defaults: 30, recorded, 0.001). Environment: `FLIGHT=k` sets `LoopOptions::min_flight`,
-//! `LOCK_LOSS`, `LOCK_RATE` the lock's options, `EVENTS=1` prints every event.
+//! `LOCK_LOSS`, `LOCK_RATE` the lock's options, `EVENTS=1` prints every event;
+//! `ROCKING_LOOP_SCREEN=off|on|verify` the opening model's screen (docs/arches.md §4).
 use rocking::chain::arch::VoussoirArch;
 use rocking::driver::closed::LoopEventKind;
 use rocking::driver::{simulate_loop, LoopOptions, LoopState};
@@ -76,6 +77,14 @@ fn main() {
         out.max_closure_residual,
         out.max_step_drift,
         wall.as_secs_f64()
+    );
+    println!(
+        "opening model after a moving step: {} questions, {} answered by the screen ({:.1} %, \
+         ROCKING_LOOP_SCREEN = {:?})",
+        out.moving_checks,
+        out.screened,
+        100.0 * out.screened as f64 / out.moving_checks.max(1) as f64,
+        options.screen
     );
     if std::env::var("EVENTS").is_ok() {
         for e in &out.events {

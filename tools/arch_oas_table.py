@@ -1,9 +1,13 @@
 #!/usr/bin/env python3
 """Tables of docs/arches.md 3b from `rocking arch oas --t1 T1` JSON files (argv) and their
-`/usr/bin/time` lines (the same name with .err): the boundary of one record, and one row per
-record of the t1 check. A collapse whose run peaked below 0.01 rad is flagged as suspect (the
-loop driver's collapse criterion firing while the arch rattles nearly closed)."""
+`/usr/bin/time -f "%e s wall, %U user, ..."` lines (the same name with .err): the boundary of one
+record (`boundary FILE`), one row per record of the t1 check (`rows FILES`), and the totals over
+the records (`summary FILES`). A collapse whose run peaked below 0.01 rad is flagged as suspect
+(the collapse criterion firing while the arch rattles nearly closed, as the loop driver before
+the Hermite location did); `rows` gives the smallest peak of a boundary collapse to show there is
+none."""
 import json
+import statistics
 import sys
 
 SUSPECT = 0.01
@@ -21,13 +25,6 @@ def load(path):
     except OSError:
         pass
     return d, peaks, wall, cpu
-
-
-def clean_t1(d, peaks):
-    """1/f over the boundary points whose run peaked at or above SUSPECT: an upper bound of the
-    f_min a driver without the suspect collapses would give, so a lower bound of its t1."""
-    fs = [l['f'] for l in d['levels'] if l['f'] is not None and peaks[(l['level'], l['size'])] >= SUSPECT]
-    return 1 / min(fs) if fs else None
 
 
 def boundary(path):
@@ -48,19 +45,44 @@ def fmt(x, f='{:.3f}'):
 
 
 def rows(paths):
-    print('| record | single-block t₁ (s) | arch t₁ = 1/f_min (s) | level, R at f_min | arch t₁ without suspect collapses (lower bound, s) | boundary points violating the rule | conservative | runs (failed) | wall / CPU (s) |')
-    print('|---|---:|---:|---|---:|---:|---|---:|---:|')
+    print('| record | single-block t₁ (s) | arch t₁ = 1/f_min (s) | ratio | level, R at f_min | boundary points violating the rule | conservative | smallest peak of a boundary collapse (rad) | runs (failed) | wall / CPU (s) |')
+    print('|---|---:|---:|---:|---|---:|---|---:|---:|---:|')
     for p in paths:
         d, peaks, wall, cpu = load(p)
         c = d['check']
         r = d['runs']
         runs = r['collapsed'] + r['survived'] + len(r['failures'])
         at = '—' if d['f_min'] is None else f"{d['level_at_f_min']:g}, {d['size_at_f_min']:.1f} m"
-        print(f"| {d['record']} | {c['t1']:.4f} | {fmt(d['t1'])} | {at} | {fmt(clean_t1(d, peaks))} | {c['violations']} | {'yes' if c['conservative'] else 'no'} | {runs} ({len(r['failures'])}) | {fmt(wall, '{:.0f}')} / {fmt(cpu, '{:.0f}')} |")
+        ratio = None if d['t1'] is None else d['t1'] / c['t1']
+        bpk = [peaks[(l['level'], l['size'])] for l in d['levels'] if l['size'] is not None]
+        low = min(bpk) if bpk else None
+        flag = ' (suspect)' if low is not None and low < SUSPECT else ''
+        print(f"| {d['record']} | {c['t1']:.4f} | {fmt(d['t1'])} | {fmt(ratio, '{:.2f}')} | {at} | {c['violations']} | {'yes' if c['conservative'] else 'no'} | {fmt(low)}{flag} | {runs} ({len(r['failures'])}) | {fmt(wall, '{:.0f}')} / {fmt(cpu, '{:.0f}')} |")
+
+
+def summary(paths):
+    ds = [load(p) for p in paths]
+    ratios = sorted((d['t1'] / d['check']['t1'], d['record']) for d, _, _, _ in ds if d['t1'] is not None)
+    cons = sum(d['check']['conservative'] for d, _, _, _ in ds)
+    runs = sum(d['runs']['collapsed'] + d['runs']['survived'] + len(d['runs']['failures']) for d, _, _, _ in ds)
+    failed = [(d['record'], f) for d, _, _, _ in ds for f in d['runs']['failures']]
+    kinds = {}
+    for _, f in failed:
+        k = f['message'].split(' at t =')[0]
+        kinds[k] = kinds.get(k, 0) + 1
+    edge = sum(1 for d, _, _, _ in ds if d['size_at_f_min'] is not None and d['size_at_f_min'] in (max(d['sizes']), min(d['sizes'])))
+    suspect = sum(1 for d, peaks, _, _ in ds for v in peaks.values() if v < SUSPECT)
+    print(f"{len(ds)} records: conservative on {cons}, not on {len(ds) - cons}")
+    print(f"arch t1 / single-block t1: min {ratios[0][0]:.2f} ({ratios[0][1]}), median {statistics.median(r for r, _ in ratios):.2f}, max {ratios[-1][0]:.2f} ({ratios[-1][1]}); above 1: {sum(r > 1 for r, _ in ratios)}, above 1.5: {sum(r > 1.5 for r, _ in ratios)}")
+    print(f"f_min at the grid's largest or smallest radius: {edge}; collapses peaking below {SUSPECT} rad: {suspect}")
+    print(f"runs {runs}, failed {len(failed)} on {len({r for r, _ in failed})} records: {kinds}")
+    print(f"wall {sum(w for _, _, w, _ in ds if w):.0f} s, CPU {sum(c for _, _, _, c in ds if c):.0f} s")
 
 
 if __name__ == '__main__':
     if sys.argv[1] == 'boundary':
         boundary(sys.argv[2])
+    elif sys.argv[1] == 'summary':
+        summary(sys.argv[2:])
     else:
         rows(sys.argv[2:])

@@ -180,3 +180,23 @@ fn arch_run_cost() {
         }
     }
 }
+
+/// Level 3 on the bundled record (R = 5 m, 8 voussoirs) failed at once with "no joint is flagged
+/// as closing" under the loop driver with linear location (046b835, docs/arches.md 3b "Cost"): a
+/// crossing located at the step-halving floor whose DOF moved away from closure at the
+/// interpolated instant was left unflagged, so the impact model got an empty closing set. The
+/// Hermite location flags every located zero (a rate moving away there is the interpolant's
+/// round-off, set to zero). The run must go through (today it collapses at 7.38 s).
+#[test]
+fn level_three_on_the_bundled_record_runs() {
+    let record = bundled_record();
+    let sweep = ArchSweepOptions {
+        shape: shape(8),
+        ..ArchSweepOptions::default()
+    };
+    let run = arch_record_run(&record, &onset(8), 3.0, 5.0, &sweep);
+    match run {
+        Ok(r) => assert!(r.simulated && r.events > 0, "{r:?}"),
+        Err(e) => panic!("level 3, R = 5 m: {e}"),
+    }
+}

@@ -4,6 +4,7 @@
 //! recomputed at every evaluation; and the classical RK4 step on the open DOFs.
 
 use crate::chain::{Chain, ChainPose};
+use crate::model::configuration::Status;
 
 /// The constrained equations of a loop's open DOFs, with scratch for one evaluation.
 #[derive(Clone, Debug)]
@@ -17,6 +18,7 @@ pub struct LoopEquations<'a> {
     pose: ChainPose,
     velocity: Vec<f64>,
     scratch: Vec<[f64; 2]>,
+    screen: Vec<f64>,
 }
 
 impl<'a> LoopEquations<'a> {
@@ -33,6 +35,7 @@ impl<'a> LoopEquations<'a> {
             pose: ChainPose::default(),
             velocity: Vec::new(),
             scratch: Vec::new(),
+            screen: Vec::new(),
         }
     }
 
@@ -101,6 +104,56 @@ impl<'a> LoopEquations<'a> {
         }
         out[..nf].copy_from_slice(&b[..nf]);
         true
+    }
+
+    /// The screen of the opening model (`LoopOptions::screen`, docs/arches.md §4): whether the
+    /// configuration `statuses` (open DOFs `open`, reduced angles `x` and rates `v`) under the
+    /// ground acceleration `ag` is the opening model's own answer. With `a` and `μ` the
+    /// mechanism's constrained accelerations and closure multipliers (the KKT system of
+    /// [`LoopEquations::accelerations`]), the model's optimality conditions at "nothing new
+    /// opens" are those of a closed DOF `d` (`s_d a_d ≥ 0`, `s_d` its admissible sign):
+    /// `ν_d = s_d ((M a)_d − q_d − f_d + (Gᵀμ)_d) ≥ 0`, its contact multiplier; the open DOFs
+    /// are free. The relaxed problem (either corner of a closed joint) is convex with a unique
+    /// optimum (`M` positive definite on the null space of the closure), so when every
+    /// `ν_d > margin × scale` (`scale` the largest of the three terms over the closed DOFs) the
+    /// optimum opens nothing and the model keeps the configuration. `false` when any is not
+    /// (or the system is singular): the model must be asked.
+    pub fn current_holds(
+        &mut self,
+        statuses: &[Status],
+        open: &[usize],
+        ag: f64,
+        x: &[f64],
+        v: &[f64],
+        margin: f64,
+    ) -> bool {
+        let nf = open.len();
+        let mut a = std::mem::take(&mut self.screen);
+        a.clear();
+        a.resize(nf, 0.0);
+        let holds = self.accelerations(open, ag, x, v, &mut a) && {
+            let n = statuses.len();
+            let mu = [self.rhs[nf], self.rhs[nf + 1], self.rhs[nf + 2]];
+            let pose = &self.pose;
+            let (mut worst, mut scale) = (f64::INFINITY, 0.0_f64);
+            for k in (0..n).filter(|&k| !statuses[k].is_open()) {
+                for (d, sign) in [(k, -1.0), (n + k, 1.0)] {
+                    let ma: f64 = open
+                        .iter()
+                        .zip(&a)
+                        .map(|(&j, &aj)| self.chain.mass_entry(pose, d, j) * aj)
+                        .sum();
+                    let load = self.chain.load_entry(pose, d, ag, self.gravity) + self.velocity[d];
+                    let p = self.chain.pivot(pose, d);
+                    let gmu = mu[0] + p[1] * mu[1] - p[0] * mu[2];
+                    worst = worst.min(sign * (ma - load + gmu));
+                    scale = scale.max(ma.abs()).max(load.abs()).max(gmu.abs());
+                }
+            }
+            worst > margin * scale
+        };
+        self.screen = a;
+        holds
     }
 
     /// One classical RK4 step of length `dt` from `(x, v)` at time `t` under `ag(t)`: the state

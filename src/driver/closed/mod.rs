@@ -42,7 +42,11 @@
 //!   another microseconds later, each closing opening the next fan (docs/arches.md §2b);
 //! - **opening while moving**: after every accepted step the opening model is asked with the
 //!   current configuration; if it prefers another (a new hinge), the new joints open at zero
-//!   angle;
+//!   angle. Where the current mechanism satisfies the model's optimality conditions with a
+//!   margin, its answer is the current configuration and it is not called ([`Screen`], exact);
+//! - **a step from rest whose opening closes at once** (the mechanism the model opened under
+//!   `a_g(t)` is back in closure at the step's start and the loop settles into the state it
+//!   started from) is rested through, rather than repeated at the same instant;
 //! - **settling**: when the kinetic energy after an impact falls below
 //!   [`LoopOptions::settle_ratio`] times the largest kinetic energy of the run, the rates are
 //!   set to zero (at rest; the closing joints are then closed, and the loop is closed outright
@@ -60,34 +64,34 @@
 //!   a maximum; a mechanism restarted from rest a hair from closure has gravity's power at
 //!   round-off). (c) Safeguard: a hinge angle beyond [`LoopOptions::collapse_angle`].
 //!
+//! Files: this one holds the run's loop (`simulate_loop`, one step at a time); `opening.rs` the
+//! opening model from rest and while moving and the at-rest interval; `closing.rs` the located
+//! closings, the impact model, the locks; `collapse.rs` settling and collapse; `locate.rs` the
+//! zeros on the step's cubic; `equations.rs` the constrained equations and RK4; `projection.rs`
+//! the projections onto the closure; `state.rs` the state, options, events and outcome.
+//!
 //! This driver does not yet go through the column's pipeline (`run.rs` with the
 //! `ChainDynamics` traits of `chain.rs`); see `docs/arches.md`.
 
+mod closing;
+mod collapse;
 mod equations;
 mod locate;
+mod opening;
 mod projection;
 mod state;
+#[cfg(test)]
+mod tests;
 
 pub use equations::LoopEquations;
 pub use projection::{project_positions, project_rates};
-pub use state::{LoopError, LoopEvent, LoopEventKind, LoopOptions, LoopOutcome, LoopState};
+pub use state::{LoopError, LoopEvent, LoopEventKind, LoopOptions, LoopOutcome, LoopState, Screen};
 
 use crate::chain::Chain;
 use crate::ground::GroundMotion;
 use crate::model::configuration::Status;
-use crate::model::constrained::{impact_model_constrained, opening_model_constrained};
+use closing::Located;
 use locate::first_crossing;
-
-/// Closings located within this share of the step of the earliest are one event (the closing
-/// set of one impact): far above the located zeros' error (the cubic interpolant's `O(dt⁴)` on
-/// the angles divided by the closing rate, below 1e-12 s on the arches of docs/arches.md), far
-/// below any physical interval between two impacts the step could resolve.
-const SIMULTANEOUS: f64 = 1e-6;
-
-/// A loop settled with no point displaced farther than this from the closed geometry (m) is
-/// closed: a nanometre, a thousand times the closure projection's round-off on the arches of
-/// docs/arches.md and far below any displacement that matters to a structure.
-const SNAP_DISTANCE: f64 = 1e-9;
 
 fn codes(statuses: &[Status]) -> Vec<i8> {
     statuses.iter().map(|s| s.as_i8()).collect()
@@ -164,6 +168,9 @@ struct Runner<'a> {
     closed_potential: f64,
     potential_tolerance: f64,
     max_kinetic: f64,
+    /// The time of the last closing and how many closings in a row happened at it.
+    last_event_time: f64,
+    stalled: usize,
     out: LoopOutcome,
 }
 
@@ -190,6 +197,8 @@ impl<'a> Runner<'a> {
             closed_potential: 0.0,
             potential_tolerance: 0.0,
             max_kinetic: 0.0,
+            last_event_time: f64::NAN,
+            stalled: 0,
             out: LoopOutcome {
                 events: Vec::new(),
                 state: LoopState::at_rest(chain),
@@ -198,6 +207,8 @@ impl<'a> Runner<'a> {
                 max_closure_residual: 0.0,
                 max_step_drift: 0.0,
                 history: Vec::new(),
+                moving_checks: 0,
+                screened: 0,
             },
         }
     }
@@ -234,190 +245,9 @@ impl<'a> Runner<'a> {
         }
     }
 
-    /// The opening model at `s` under `ag`: adopts its configuration if it differs (new joints at
-    /// zero angle) and, from rest, only if it moves something. Returns whether it changed.
-    fn opening(&mut self, s: &mut LoopState, ag: f64) -> Result<bool, LoopError> {
-        let (statuses, moves) = self.choice(s, ag)?;
-        let moving = s.rates.iter().any(|&r| r != 0.0);
-        // From rest: adopt what the model chose when it moves something; while moving: adopt a
-        // different configuration.
-        if (!moving && moves) || (moving && statuses != s.statuses) {
-            s.statuses = statuses;
-            self.event(s, LoopEventKind::Opening);
-            return Ok(true);
-        }
-        Ok(false)
-    }
-
-    /// The opening model's configuration at `s` under `ag`, and whether it moves anything.
-    fn choice(&self, s: &LoopState, ag: f64) -> Result<(Vec<Status>, bool), LoopError> {
-        let pose = self.chain.pose(&s.phi);
-        let mass = self.chain.mass_matrix(&pose);
-        let q = self.chain.load_vector(&pose, ag, self.options.gravity);
-        let f = self.chain.velocity_load(&pose, &s.phi, &s.rates);
-        let load: Vec<f64> = q.iter().zip(&f).map(|(a, b)| a + b).collect();
-        let g = self.chain.closure_matrix(&pose);
-        let rhs: Vec<f64> = self
-            .chain
-            .closure_rate(&pose, &s.rates)
-            .iter()
-            .map(|x| -x)
-            .collect();
-        let mut statuses = s.statuses.clone();
-        let mut acc = vec![0.0; self.chain.n_dofs()];
-        opening_model_constrained(
-            &mass,
-            &load,
-            &g,
-            Some(&rhs),
-            &mut statuses,
-            &mut acc,
-            &self.options.model,
-        )?;
-        // A joint the model opens with zero acceleration (to round-off) at zero angle and rate
-        // does not move: it stays closed (else it chatters back through zero at once).
-        let scale = acc.iter().fold(0.0, |m: f64, a| m.max(a.abs()));
-        let n = statuses.len();
-        for k in 0..n {
-            if let Some(d) = statuses[k].dof(k, n) {
-                let at_zero = s.phi[d] == 0.0 && s.rates[d] == 0.0 && !s.statuses[k].is_open();
-                if at_zero && acc[d].abs() <= 1e-12 * scale {
-                    statuses[k] = Status::Closed;
-                    acc[d] = 0.0;
-                }
-            }
-        }
-        let moves = acc.iter().any(|&a| a != 0.0);
-        Ok((statuses, moves))
-    }
-
-    /// The interval of ground accelerations the closed loop at rest `s` resists, by bisection on
-    /// each side with the opening model (to 1e-9 relative; its ends are accelerations the model
-    /// answered "at rest" to). `(0, 0)` if it does not resist `a_g = 0`.
-    fn resisted_interval(&self, s: &LoopState) -> Result<(f64, f64), LoopError> {
-        let opens = |ag: f64| self.choice(s, ag).map(|c| c.1);
-        if opens(0.0)? {
-            return Ok((0.0, 0.0));
-        }
-        let mut ends = [0.0; 2];
-        for (end, sign) in ends.iter_mut().zip([-1.0, 1.0]) {
-            let (mut lo, mut hi) = (0.0, 0.01 * self.options.gravity);
-            while !opens(sign * hi)? {
-                lo = hi;
-                hi *= 2.0;
-                if hi > 1e3 * self.options.gravity {
-                    break;
-                }
-            }
-            while hi - lo > 1e-9 * hi {
-                let mid = 0.5 * (lo + hi);
-                if opens(sign * mid)? {
-                    hi = mid;
-                } else {
-                    lo = mid;
-                }
-            }
-            *end = sign * lo;
-        }
-        Ok((ends[0], ends[1]))
-    }
-
-    /// Joints the impact model opens at zero angle with a rate below the lock rate are kept
-    /// closed: such a flight lasts about one step or less (the rate gravity gives in one step at
-    /// the chain's size, as the lock of a chattering joint), the fixed step cannot resolve it, and
-    /// the limit of the Zeno sequence of impacts it starts is sustained contact. The rates are
-    /// then the kinetic-metric projection of the model's onto the remaining open DOFs with the
-    /// closure (kinetic energy not above the model's); a DOF at zero angle that the projection
-    /// turns inadmissible (closing) is kept closed too, until none is. Fewer than four open
-    /// joints: at rest (SPEC §9). Returns whether anything changed.
-    fn keep_slow_closed(&mut self, s: &mut LoopState) -> Result<bool, LoopError> {
-        let n = self.chain.n_joints();
-        let mut changed = false;
-        let flight = self.options.min_flight;
-        loop {
-            let open = s.open_dofs();
-            let mut acc = vec![0.0; open.len()];
-            if flight > 0.0 {
-                let x: Vec<f64> = open.iter().map(|&d| s.phi[d]).collect();
-                let v: Vec<f64> = open.iter().map(|&d| s.rates[d]).collect();
-                let ag = self.motion.acceleration(s.time);
-                if !self.equations.accelerations(&open, ag, &x, &v, &mut acc) {
-                    return Err(LoopError::Singular(s.time));
-                }
-            }
-            let slow: Vec<usize> = open
-                .iter()
-                .zip(&acc)
-                .filter(|&(&d, &a)| {
-                    let (r, a) = (side(d, n) * s.rates[d], side(d, n) * a);
-                    let short = a < 0.0 && 2.0 * r <= -a * flight * self.options.dt;
-                    s.phi[d] == 0.0 && (r <= self.lock_rate || short)
-                })
-                .map(|(&d, _)| d % n)
-                .collect();
-            if slow.is_empty() {
-                return Ok(changed);
-            }
-            changed = true;
-            for &k in &slow {
-                s.statuses[k] = Status::Closed;
-            }
-            let open = s.open_dofs();
-            if open.len() < 4 {
-                s.rates.iter_mut().for_each(|r| *r = 0.0);
-                return Ok(true);
-            }
-            let pose = self.chain.pose(&s.phi);
-            if !project_rates(self.chain, &pose, &open, &mut s.rates) {
-                return Err(LoopError::Singular(s.time));
-            }
-        }
-    }
-
     fn residual(&self, phi: &[f64]) -> f64 {
         let r = self.chain.closure_residual(&self.chain.pose(phi));
         r[1].hypot(r[2]).max(r[0].abs() * self.reach)
-    }
-
-    /// Potential energy of the bodies' weight (J) in the pose of `phi`.
-    fn potential(&self, phi: &[f64]) -> f64 {
-        let pose = self.chain.pose(phi);
-        let bodies = self.chain.bodies();
-        self.options.gravity
-            * bodies
-                .iter()
-                .zip(&pose.centres)
-                .map(|(b, c)| b.mass * c[1])
-                .sum::<f64>()
-    }
-
-    /// Collapse (see the module's documentation): the potential energy below the closed loop's
-    /// (over the barrier, any mechanism); for a one-DOF mechanism (four open joints) already
-    /// past the maximum of `V` along it (gravity's power positive while the hinges open); or a
-    /// hinge angle beyond the safeguard.
-    fn collapsed(&self, s: &LoopState, open: &[usize], residual: f64) -> bool {
-        let n = self.chain.n_joints();
-        if s.phi.iter().any(|p| p.abs() > self.options.collapse_angle) {
-            return true;
-        }
-        // A pose off the closure by `residual` misplaces the weight by about that much.
-        let slack =
-            self.potential_tolerance + self.options.gravity * self.chain.total_mass() * residual;
-        let potential = self.potential(&s.phi);
-        if potential < self.closed_potential - slack {
-            return true;
-        }
-        // Past the maximum of `V` along a one-DOF path from the closed loop, a strict local
-        // minimum: `V` has climbed above `V₀` first. (A mechanism at rest a hair from closure,
-        // angles of 1e-12 rad, has gravity's power at round-off, of either sign.)
-        if open.len() != 4 || potential <= self.closed_potential + slack {
-            return false;
-        }
-        let pose = self.chain.pose(&s.phi);
-        let gravity = self.chain.load_vector(&pose, 0.0, self.options.gravity);
-        let power: f64 = open.iter().map(|&d| gravity[d] * s.rates[d]).sum();
-        let opening: f64 = open.iter().map(|&d| side(d, n) * s.rates[d]).sum();
-        power > 0.0 && opening > 0.0
     }
 
     fn run(mut self, start: LoopState) -> Result<LoopOutcome, LoopError> {
@@ -428,7 +258,6 @@ impl<'a> Runner<'a> {
         self.closed_potential = self.potential(&vec![0.0; self.chain.n_dofs()]);
         self.potential_tolerance = 1e-12 * opts.gravity * self.chain.total_mass() * self.reach;
         let mut steps = 0usize;
-        let (mut last_event_time, mut stalled) = (f64::NAN, 0usize);
         self.max_kinetic = self.kinetic(&s);
         if opts.record_every > 0 {
             self.out.history.push((s.time, s.phi.clone()));
@@ -462,6 +291,17 @@ impl<'a> Runner<'a> {
                 s.time += dt;
                 continue;
             }
+            // At rest, the state the step starts from (angles, statuses, events and history
+            // recorded so far), to recognise a step the loop rests through (below).
+            let rest_start = at_rest.then(|| {
+                (
+                    s.time,
+                    s.phi.clone(),
+                    s.statuses.clone(),
+                    self.out.events.len(),
+                    self.out.history.len(),
+                )
+            });
             if at_rest && !self.opening(&mut s, ag_now)? {
                 if reference {
                     self.resisted = Some(self.resisted.map_or((ag_now, ag_now), |(lo, hi)| {
@@ -495,141 +335,34 @@ impl<'a> Runner<'a> {
                 })
                 .collect();
             if let Some(first) = crossings.iter().map(|c| c.1).reduce(f64::min) {
-                // The state at the earliest zero: RK4 again from the start of the step over the
-                // located fraction (no interpolation error in the state the impact sees).
-                let (mut xe, mut ve) = (x.clone(), v.clone());
-                if first > 0.0
-                    && !self.equations.rk4_step(
-                        &open,
-                        &ag,
-                        s.time,
-                        first * dt,
-                        &x,
-                        &v,
-                        &mut xe,
-                        &mut ve,
-                    )
-                {
-                    return Err(LoopError::Singular(s.time));
-                }
-                s.time += first * dt;
-                for i in 0..open.len() {
-                    s.phi[open[i]] = xe[i];
-                    s.rates[open[i]] = ve[i];
-                }
-                // Flagged: every DOF whose zero lies within `SIMULTANEOUS` of the earliest (a
-                // one-DOF mechanism's hinges reach zero at the same instant, SPEC §9; their
-                // located zeros differ by the interpolant's error only), and any DOF the
-                // integration to the instant left at or through zero.
-                let tolerance = SIMULTANEOUS * opts.dt;
-                let mut closing = vec![false; n];
-                for i in 0..open.len() {
-                    let d = open[i];
-                    let located = crossings
-                        .iter()
-                        .any(|&(j, sj)| j == i && (sj - first) * dt <= tolerance);
-                    if located || depth(d, s.phi[d]) <= 0.0 {
-                        s.phi[d] = 0.0;
-                        // At its zero a DOF moves towards closure; a rate moving away there is
-                        // the interpolant's round-off (a joint that opened with zero rate).
-                        if depth(d, s.rates[d]) > 0.0 {
-                            s.rates[d] = 0.0;
-                        }
-                        closing[d % n] = true;
-                    }
-                }
-                // The closing angles set to zero leave the state off the closure by their
-                // located zeros' error: back onto it with the rest.
-                let residual = if opts.project {
-                    let rest: Vec<usize> =
-                        open.iter().copied().filter(|&d| !closing[d % n]).collect();
-                    project_positions(self.chain, &rest, &mut s.phi, self.reach, 3)
-                } else {
-                    self.residual(&s.phi)
+                let step = Located {
+                    open: &open,
+                    x: &x,
+                    v: &v,
+                    crossings: &crossings,
+                    first,
+                    dt,
                 };
-                self.out.max_closure_residual = self.out.max_closure_residual.max(residual);
-                if s.time == last_event_time {
-                    stalled += 1;
-                    if stalled >= 100 {
-                        return Err(LoopError::Stalled(s.time));
+                let kinetic_after = self.close(&mut s, &step)?;
+                self.settle(&mut s, kinetic_after);
+                // From rest, the mechanism the opening model chose under `a_g(t)` closed again at
+                // the step's start (its depths' cubic never rises: the ground acceleration falls
+                // back inside what the loop resists within the step, e.g. a record grazing `λ g`)
+                // and the loop is back in the very state the step started from. Repeating it
+                // would never advance (`LoopError::Stalled` after 100 events): the loop rests
+                // through this step, as its flight, shorter than the step, ends in sustained
+                // contact (the lock's argument). Nothing happened: its events are dropped.
+                if let Some((t0, phi0, statuses0, events0, history0)) = &rest_start {
+                    if s.time == *t0
+                        && s.rates.iter().all(|&r| r == 0.0)
+                        && s.phi == *phi0
+                        && s.statuses == *statuses0
+                    {
+                        self.out.events.truncate(*events0);
+                        self.out.history.truncate(*history0);
+                        s.time += dt;
+                        continue;
                     }
-                } else {
-                    (last_event_time, stalled) = (s.time, 0);
-                }
-                let before = self.kinetic(&s);
-                self.max_kinetic = self.max_kinetic.max(before);
-                let (statuses_before, rates_before) = (s.statuses.clone(), s.rates.clone());
-                let closing_rate = (0..n)
-                    .filter(|&k| closing[k])
-                    .map(|k| (s.rates[k] + s.rates[n + k]).abs())
-                    .fold(0.0, f64::max);
-                let pose = self.chain.pose(&s.phi);
-                let mass = self.chain.mass_matrix(&pose);
-                let g = self.chain.closure_matrix(&pose);
-                let report = impact_model_constrained(
-                    &mass,
-                    &g,
-                    &mut s.statuses,
-                    &mut s.rates,
-                    &closing,
-                    &opts.model,
-                )?;
-                let joints: Vec<usize> = (0..n).filter(|&k| closing[k]).collect();
-                let loss = report.kinetic_before - report.kinetic_after;
-                let mut kinetic_after = report.kinetic_after;
-                if loss <= opts.lock_loss * report.kinetic_before && closing_rate <= self.lock_rate
-                {
-                    // A chatter: lock the closing joints instead.
-                    s.statuses = statuses_before;
-                    s.rates = rates_before;
-                    for &k in &joints {
-                        s.statuses[k] = Status::Closed;
-                    }
-                    let open = s.open_dofs();
-                    // Fewer than four open joints: at rest (SPEC §9), settled below.
-                    if open.len() < 4 {
-                        s.rates.iter_mut().for_each(|r| *r = 0.0);
-                    } else if !project_rates(self.chain, &pose, &open, &mut s.rates) {
-                        return Err(LoopError::Singular(s.time));
-                    }
-                    kinetic_after = self.kinetic(&s);
-                    self.event(
-                        &s,
-                        LoopEventKind::Locked {
-                            joints,
-                            kinetic_before: report.kinetic_before,
-                            kinetic_after,
-                        },
-                    );
-                } else {
-                    if self.keep_slow_closed(&mut s)? {
-                        kinetic_after = self.kinetic(&s);
-                    }
-                    self.event(
-                        &s,
-                        LoopEventKind::Closing {
-                            joints,
-                            kinetic_before: report.kinetic_before,
-                            kinetic_after,
-                        },
-                    );
-                }
-                let open_after = s.statuses.iter().filter(|st| st.is_open()).count();
-                if kinetic_after <= opts.settle_ratio * self.max_kinetic || open_after < 4 {
-                    s.rates.iter_mut().for_each(|r| *r = 0.0);
-                    // At rest a hair from closure (no point displaced by more than
-                    // `SNAP_DISTANCE`: the round-off of the closure projection), the loop is
-                    // closed: the angles are set to zero.
-                    let largest = s.phi.iter().fold(0.0, |m: f64, p| m.max(p.abs()));
-                    if largest * self.reach <= SNAP_DISTANCE {
-                        s.phi.iter_mut().for_each(|p| *p = 0.0);
-                    }
-                    for k in 0..n {
-                        if s.phi[k] == 0.0 && s.phi[n + k] == 0.0 {
-                            s.statuses[k] = Status::Closed;
-                        }
-                    }
-                    self.event(&s, LoopEventKind::Settled);
                 }
                 continue;
             }

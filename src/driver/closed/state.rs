@@ -48,6 +48,39 @@ pub struct LoopOptions {
     /// the closed loop resists (e.g. a record after its last exceedance of `λ g`): the loop can
     /// then never move again, so the rest of the run is known (exact). `None`: run to the end.
     pub quiet_after: Option<f64>,
+    /// The exact screen of the opening model while moving ([`Screen`]; default: from
+    /// `ROCKING_LOOP_SCREEN`, else [`Screen::On`]).
+    pub screen: Screen,
+}
+
+/// The opening model's screen after a moving step (docs/arches.md §4). The model is a
+/// projection in the kinetic metric (Gauss's principle over the cone of admissible
+/// accelerations with the closure, a convex problem whose relaxation has a unique optimum): when
+/// the current mechanism's own constrained accelerations satisfy its optimality conditions —
+/// every closed DOF's contact multiplier of the admissible sign, by a margin far above
+/// round-off — the model's answer is the current configuration, so the model need not be asked.
+/// Where the conditions fail or are too close to call, the model answers as before.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Screen {
+    /// Ask the opening model after every moving step.
+    Off,
+    /// Skip the model where the screen proves its answer is the current configuration.
+    On,
+    /// Ask the model always, and panic if it ever differs from what the screen proved (tests:
+    /// `ROCKING_LOOP_SCREEN=verify`).
+    Verify,
+}
+
+impl Screen {
+    /// From the environment variable `ROCKING_LOOP_SCREEN` (`off`, `on`, `verify`); unset or
+    /// anything else: [`Screen::On`].
+    pub fn from_env() -> Screen {
+        match std::env::var("ROCKING_LOOP_SCREEN").as_deref() {
+            Ok("off") => Screen::Off,
+            Ok("verify") => Screen::Verify,
+            _ => Screen::On,
+        }
+    }
 }
 
 impl Default for LoopOptions {
@@ -66,6 +99,7 @@ impl Default for LoopOptions {
             lock_rate: None,
             min_flight: 0.0,
             quiet_after: None,
+            screen: Screen::from_env(),
         }
     }
 }
@@ -144,6 +178,10 @@ pub struct LoopOutcome {
     pub max_step_drift: f64,
     /// `(t, φ)` samples every [`LoopOptions::record_every`] steps and at events.
     pub history: Vec<(f64, Vec<f64>)>,
+    /// Questions to the opening model after a moving step, and how many of them the screen
+    /// answered ([`LoopOptions::screen`]; with [`Screen::Verify`], would have answered).
+    pub moving_checks: usize,
+    pub screened: usize,
 }
 
 /// Errors of a loop run.

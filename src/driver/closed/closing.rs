@@ -1,0 +1,207 @@
+//! Closings of a loop's step: the located earliest zero, the joints closing with it, the
+//! constrained impact model, the lock of a chattering joint and of joints opened slower than the
+//! step resolves (docs/arches.md 2b).
+
+use super::{project_positions, project_rates, side, LoopError, LoopEventKind, LoopState, Runner};
+use crate::model::configuration::Status;
+use crate::model::constrained::impact_model_constrained;
+
+/// Closings located within this share of the step of the earliest are one event (the closing
+/// set of one impact): far above the located zeros' error (the cubic interpolant's `O(dt⁴)` on
+/// the angles divided by the closing rate, below 1e-12 s on the arches of docs/arches.md), far
+/// below any physical interval between two impacts the step could resolve.
+const SIMULTANEOUS: f64 = 1e-6;
+
+/// A step of the open DOFs `open` from `(x, v)` whose depths reach zero: `crossings` are the
+/// located zeros (index into `open`, fraction of the step `dt`), `first` the earliest.
+pub(super) struct Located<'s> {
+    pub open: &'s [usize],
+    pub x: &'s [f64],
+    pub v: &'s [f64],
+    pub crossings: &'s [(usize, f64)],
+    pub first: f64,
+    pub dt: f64,
+}
+
+impl Runner<'_> {
+    /// Carries `s` to the earliest located zero of the step, flags the joints closing there and
+    /// applies the impact model (or the lock); returns the kinetic energy after.
+    pub(super) fn close(&mut self, s: &mut LoopState, step: &Located) -> Result<f64, LoopError> {
+        let opts = self.options;
+        let n = self.chain.n_joints();
+        let Located {
+            open,
+            x,
+            v,
+            crossings,
+            first,
+            dt,
+        } = *step;
+        let motion = self.motion;
+        let ag = |t: f64| motion.acceleration(t);
+        let depth = |d: usize, xi: f64| side(d, n) * xi;
+        // The state at the earliest zero: RK4 again from the start of the step over the
+        // located fraction (no interpolation error in the state the impact sees).
+        let (mut xe, mut ve) = (x.to_vec(), v.to_vec());
+        if first > 0.0
+            && !self
+                .equations
+                .rk4_step(open, &ag, s.time, first * dt, x, v, &mut xe, &mut ve)
+        {
+            return Err(LoopError::Singular(s.time));
+        }
+        s.time += first * dt;
+        for i in 0..open.len() {
+            s.phi[open[i]] = xe[i];
+            s.rates[open[i]] = ve[i];
+        }
+        // Flagged: every DOF whose zero lies within `SIMULTANEOUS` of the earliest (a
+        // one-DOF mechanism's hinges reach zero at the same instant, SPEC §9; their
+        // located zeros differ by the interpolant's error only), and any DOF the
+        // integration to the instant left at or through zero.
+        let tolerance = SIMULTANEOUS * opts.dt;
+        let mut closing = vec![false; n];
+        for i in 0..open.len() {
+            let d = open[i];
+            let located = crossings
+                .iter()
+                .any(|&(j, sj)| j == i && (sj - first) * dt <= tolerance);
+            if located || depth(d, s.phi[d]) <= 0.0 {
+                s.phi[d] = 0.0;
+                // At its zero a DOF moves towards closure; a rate moving away there is
+                // the interpolant's round-off (a joint that opened with zero rate).
+                if depth(d, s.rates[d]) > 0.0 {
+                    s.rates[d] = 0.0;
+                }
+                closing[d % n] = true;
+            }
+        }
+        // The closing angles set to zero leave the state off the closure by their
+        // located zeros' error: back onto it with the rest.
+        let residual = if opts.project {
+            let rest: Vec<usize> = open.iter().copied().filter(|&d| !closing[d % n]).collect();
+            project_positions(self.chain, &rest, &mut s.phi, self.reach, 3)
+        } else {
+            self.residual(&s.phi)
+        };
+        self.out.max_closure_residual = self.out.max_closure_residual.max(residual);
+        if s.time == self.last_event_time {
+            self.stalled += 1;
+            if self.stalled >= 100 {
+                return Err(LoopError::Stalled(s.time));
+            }
+        } else {
+            (self.last_event_time, self.stalled) = (s.time, 0);
+        }
+        let before = self.kinetic(s);
+        self.max_kinetic = self.max_kinetic.max(before);
+        let (statuses_before, rates_before) = (s.statuses.clone(), s.rates.clone());
+        let closing_rate = (0..n)
+            .filter(|&k| closing[k])
+            .map(|k| (s.rates[k] + s.rates[n + k]).abs())
+            .fold(0.0, f64::max);
+        let pose = self.chain.pose(&s.phi);
+        let mass = self.chain.mass_matrix(&pose);
+        let g = self.chain.closure_matrix(&pose);
+        let report = impact_model_constrained(
+            &mass,
+            &g,
+            &mut s.statuses,
+            &mut s.rates,
+            &closing,
+            &opts.model,
+        )?;
+        let joints: Vec<usize> = (0..n).filter(|&k| closing[k]).collect();
+        let loss = report.kinetic_before - report.kinetic_after;
+        let mut kinetic_after = report.kinetic_after;
+        if loss <= opts.lock_loss * report.kinetic_before && closing_rate <= self.lock_rate {
+            // A chatter: lock the closing joints instead.
+            s.statuses = statuses_before;
+            s.rates = rates_before;
+            for &k in &joints {
+                s.statuses[k] = Status::Closed;
+            }
+            let open = s.open_dofs();
+            // Fewer than four open joints: at rest (SPEC §9), settled below.
+            if open.len() < 4 {
+                s.rates.iter_mut().for_each(|r| *r = 0.0);
+            } else if !project_rates(self.chain, &pose, &open, &mut s.rates) {
+                return Err(LoopError::Singular(s.time));
+            }
+            kinetic_after = self.kinetic(s);
+            self.event(
+                s,
+                LoopEventKind::Locked {
+                    joints,
+                    kinetic_before: report.kinetic_before,
+                    kinetic_after,
+                },
+            );
+        } else {
+            if self.keep_slow_closed(s)? {
+                kinetic_after = self.kinetic(s);
+            }
+            self.event(
+                s,
+                LoopEventKind::Closing {
+                    joints,
+                    kinetic_before: report.kinetic_before,
+                    kinetic_after,
+                },
+            );
+        }
+        Ok(kinetic_after)
+    }
+
+    /// Joints the impact model opens at zero angle with a rate below the lock rate are kept
+    /// closed: such a flight lasts about one step or less (the rate gravity gives in one step at
+    /// the chain's size, as the lock of a chattering joint), the fixed step cannot resolve it, and
+    /// the limit of the Zeno sequence of impacts it starts is sustained contact. The rates are
+    /// then the kinetic-metric projection of the model's onto the remaining open DOFs with the
+    /// closure (kinetic energy not above the model's); a DOF at zero angle that the projection
+    /// turns inadmissible (closing) is kept closed too, until none is. Fewer than four open
+    /// joints: at rest (SPEC §9). Returns whether anything changed.
+    pub(super) fn keep_slow_closed(&mut self, s: &mut LoopState) -> Result<bool, LoopError> {
+        let n = self.chain.n_joints();
+        let mut changed = false;
+        let flight = self.options.min_flight;
+        loop {
+            let open = s.open_dofs();
+            let mut acc = vec![0.0; open.len()];
+            if flight > 0.0 {
+                let x: Vec<f64> = open.iter().map(|&d| s.phi[d]).collect();
+                let v: Vec<f64> = open.iter().map(|&d| s.rates[d]).collect();
+                let ag = self.motion.acceleration(s.time);
+                if !self.equations.accelerations(&open, ag, &x, &v, &mut acc) {
+                    return Err(LoopError::Singular(s.time));
+                }
+            }
+            let slow: Vec<usize> = open
+                .iter()
+                .zip(&acc)
+                .filter(|&(&d, &a)| {
+                    let (r, a) = (side(d, n) * s.rates[d], side(d, n) * a);
+                    let short = a < 0.0 && 2.0 * r <= -a * flight * self.options.dt;
+                    s.phi[d] == 0.0 && (r <= self.lock_rate || short)
+                })
+                .map(|(&d, _)| d % n)
+                .collect();
+            if slow.is_empty() {
+                return Ok(changed);
+            }
+            changed = true;
+            for &k in &slow {
+                s.statuses[k] = Status::Closed;
+            }
+            let open = s.open_dofs();
+            if open.len() < 4 {
+                s.rates.iter_mut().for_each(|r| *r = 0.0);
+                return Ok(true);
+            }
+            let pose = self.chain.pose(&s.phi);
+            if !project_rates(self.chain, &pose, &open, &mut s.rates) {
+                return Err(LoopError::Singular(s.time));
+            }
+        }
+    }
+}

@@ -1,0 +1,130 @@
+//! The opening model in the loop driver: from rest and after every moving step (a loop has no
+//! reaction test, SPEC §9), and the interval of ground accelerations the closed loop at rest
+//! resists.
+
+use super::{codes, LoopError, LoopEventKind, LoopState, Runner, Screen};
+use crate::model::configuration::Status;
+use crate::model::constrained::opening_model_constrained;
+
+/// The screen's margin: every closed DOF's multiplier must exceed this share of the largest
+/// generalised force in its optimality condition (`|(M a)_d|`, `|q_d + f_d|`, `|(Gᵀμ)_d|`), far
+/// above the round-off of both the screen and the model (about 1e-15 of it), so that the
+/// model's answer cannot differ; closer calls go to the model.
+const SCREEN_MARGIN: f64 = 1e-9;
+
+impl Runner<'_> {
+    /// The opening model at `s` under `ag`: adopts its configuration if it differs (new joints at
+    /// zero angle) and, from rest, only if it moves something. Returns whether it changed.
+    pub(super) fn opening(&mut self, s: &mut LoopState, ag: f64) -> Result<bool, LoopError> {
+        let moving = s.rates.iter().any(|&r| r != 0.0);
+        // While moving, the screen proves where the answer is the current configuration.
+        self.out.moving_checks += usize::from(moving);
+        let screened = moving && self.options.screen != Screen::Off && {
+            let open = s.open_dofs();
+            let x: Vec<f64> = open.iter().map(|&d| s.phi[d]).collect();
+            let v: Vec<f64> = open.iter().map(|&d| s.rates[d]).collect();
+            let holds = self
+                .equations
+                .current_holds(&s.statuses, &open, ag, &x, &v, SCREEN_MARGIN);
+            self.out.screened += usize::from(holds);
+            holds
+        };
+        if screened && self.options.screen == Screen::On {
+            return Ok(false);
+        }
+        let (statuses, moves) = match self.choice(s, ag) {
+            Ok(c) => c,
+            Err(e) if screened => panic!("loop screen (verify) at t = {}: {e}", s.time),
+            Err(e) => return Err(e),
+        };
+        if screened && statuses != s.statuses {
+            panic!(
+                "loop screen (verify) at t = {}: the screen kept {:?}, the opening model chose {:?}",
+                s.time,
+                codes(&s.statuses),
+                codes(&statuses)
+            );
+        }
+        // From rest: adopt what the model chose when it moves something; while moving: adopt a
+        // different configuration.
+        if (!moving && moves) || (moving && statuses != s.statuses) {
+            s.statuses = statuses;
+            self.event(s, LoopEventKind::Opening);
+            return Ok(true);
+        }
+        Ok(false)
+    }
+
+    /// The opening model's configuration at `s` under `ag`, and whether it moves anything.
+    pub(super) fn choice(&self, s: &LoopState, ag: f64) -> Result<(Vec<Status>, bool), LoopError> {
+        let pose = self.chain.pose(&s.phi);
+        let mass = self.chain.mass_matrix(&pose);
+        let q = self.chain.load_vector(&pose, ag, self.options.gravity);
+        let f = self.chain.velocity_load(&pose, &s.phi, &s.rates);
+        let load: Vec<f64> = q.iter().zip(&f).map(|(a, b)| a + b).collect();
+        let g = self.chain.closure_matrix(&pose);
+        let rhs: Vec<f64> = self
+            .chain
+            .closure_rate(&pose, &s.rates)
+            .iter()
+            .map(|x| -x)
+            .collect();
+        let mut statuses = s.statuses.clone();
+        let mut acc = vec![0.0; self.chain.n_dofs()];
+        opening_model_constrained(
+            &mass,
+            &load,
+            &g,
+            Some(&rhs),
+            &mut statuses,
+            &mut acc,
+            &self.options.model,
+        )?;
+        // A joint the model opens with zero acceleration (to round-off) at zero angle and rate
+        // does not move: it stays closed (else it chatters back through zero at once).
+        let scale = acc.iter().fold(0.0, |m: f64, a| m.max(a.abs()));
+        let n = statuses.len();
+        for k in 0..n {
+            if let Some(d) = statuses[k].dof(k, n) {
+                let at_zero = s.phi[d] == 0.0 && s.rates[d] == 0.0 && !s.statuses[k].is_open();
+                if at_zero && acc[d].abs() <= 1e-12 * scale {
+                    statuses[k] = Status::Closed;
+                    acc[d] = 0.0;
+                }
+            }
+        }
+        let moves = acc.iter().any(|&a| a != 0.0);
+        Ok((statuses, moves))
+    }
+
+    /// The interval of ground accelerations the closed loop at rest `s` resists, by bisection on
+    /// each side with the opening model (to 1e-9 relative; its ends are accelerations the model
+    /// answered "at rest" to). `(0, 0)` if it does not resist `a_g = 0`.
+    pub(super) fn resisted_interval(&self, s: &LoopState) -> Result<(f64, f64), LoopError> {
+        let opens = |ag: f64| self.choice(s, ag).map(|c| c.1);
+        if opens(0.0)? {
+            return Ok((0.0, 0.0));
+        }
+        let mut ends = [0.0; 2];
+        for (end, sign) in ends.iter_mut().zip([-1.0, 1.0]) {
+            let (mut lo, mut hi) = (0.0, 0.01 * self.options.gravity);
+            while !opens(sign * hi)? {
+                lo = hi;
+                hi *= 2.0;
+                if hi > 1e3 * self.options.gravity {
+                    break;
+                }
+            }
+            while hi - lo > 1e-9 * hi {
+                let mid = 0.5 * (lo + hi);
+                if opens(sign * mid)? {
+                    hi = mid;
+                } else {
+                    lo = mid;
+                }
+            }
+            *end = sign * lo;
+        }
+        Ok((ends[0], ends[1]))
+    }
+}

@@ -1,0 +1,42 @@
+//! The loop driver's own cases (the arches' figures are in `tests/arch_dynamics.rs`).
+
+use super::*;
+use crate::chain::arch::VoussoirArch;
+use crate::ground::FnMotion;
+
+/// A ground acceleration just beyond the arch's collapse multiplier at every step start and well
+/// inside it in between (a record grazing `λ g`): the opening model opens a mechanism at each
+/// step start, whose depths' cubic never rises over the step (RK4's mean load is inside what
+/// the arch resists), so it closes again at once, at rest, in the state the step started from.
+/// This used to repeat at one instant until `LoopError::Stalled` (17 runs of the far-field arch
+/// OAS, docs/arches.md 3b); the loop rests through such a step instead: no event, no motion.
+#[test]
+fn a_step_whose_opening_closes_at_once_is_rested_through() {
+    let chain = VoussoirArch::semicircular(5.0, 0.75, 8).chain().unwrap();
+    let (dt, lambda) = (1e-3, 0.159368);
+    let g = crate::model::column::GRAVITY;
+    let motion = FnMotion(
+        move |t: f64| {
+            let off_grid = (t / dt - (t / dt).round()).abs();
+            let level = if off_grid < 0.01 { 1.001 } else { 0.5 };
+            -level * lambda * g
+        },
+        1.0,
+    );
+    let options = LoopOptions {
+        dt,
+        duration: 0.05,
+        ..LoopOptions::default()
+    };
+    let out = simulate_loop(&chain, &motion, LoopState::at_rest(&chain), &options).unwrap();
+    assert!(out.events.is_empty(), "{:?}", &out.events[..3]);
+    assert!(!out.collapsed && out.peak_angle == 0.0);
+    assert!((out.state.time - 0.05).abs() < 1e-9, "{}", out.state.time);
+    assert_eq!(
+        out.state,
+        LoopState {
+            time: out.state.time,
+            ..LoopState::at_rest(&chain)
+        }
+    );
+}
