@@ -99,7 +99,7 @@ def suite(rows):
     p("### By drums × shape")
     p("")
     p("| drums | w × h | runs | overturned | end of record | other | max peak rotation "
-      "(rad) | max residual slip (m) | median energy residual | CPU summed (s) |")
+      "(rad) | max residual slip (m) | median energy residual | run time summed (s) |")
     p("|---|---|---|---|---|---|---|---|---|---|")
     groups = defaultdict(list)
     for r in rows:
@@ -199,7 +199,7 @@ def suite(rows):
     p(f"- contact problems that needed a fallback: {sum(r['fallbacks'] for r in rows)} "
       f"(most in one run: {w['fallbacks']}, {case(w)})")
     p("")
-    p("## Run time (each run's own clock, summed)")
+    p("## Run time (each run's own wall clock, summed; under load it exceeds CPU time)")
     p("")
     cpu = sum(r["cpu_s"] for r in rows)
     p(f"- total {cpu:.1f} s over {len(rows)} runs")
@@ -245,6 +245,11 @@ def halving(rows):
     same = [ab for ab in pairs if ab[0]["overturned"] == ab[1]["overturned"]]
     p(f"- verdicts (overturned or not) agree in {len(same)} of {len(pairs)}; "
       f"how runs end at b: {dict(sorted(ends([b for _, b in pairs]).items()))}")
+    oa = sum(a["overturned"] for a, _ in pairs)
+    ob = sum(b["overturned"] for _, b in pairs)
+    flips = sum(a["overturned"] and not b["overturned"] for a, b in pairs)
+    p(f"  - overturned at a: {oa}, at b: {ob}; a overturned and b stood: {flips}, "
+      f"a stood and b overturned: {len(pairs) - len(same) - flips}")
     for a, b in pairs:
         if a["overturned"] != b["overturned"]:
             p(f"  - differs: {case(a)}: a {a['stop']} (peak {a['peak_rotation']:.4f}), "
@@ -258,6 +263,12 @@ def halving(rows):
     if rk:
         p(f"  - of them rocking (peak ≥ {ROCKING} rad at a or b, {len(rk)}): median "
           f"{quantile(pk, 0.5):.3f}, 90 % {quantile(pk, 0.9):.3f}, max {quantile(pk, 1):.3f}")
+    if both:
+        qa = [a["peak_rotation"] for a, _ in both]
+        qb = [b["peak_rotation"] for _, b in both]
+        p("  - the distribution of the peaks (stood in both) at a / b: " + ", ".join(
+            f"{int(100 * q)} % {quantile(qa, q):.4f} / {quantile(qb, q):.4f}"
+            for q in (0.5, 0.75, 0.9, 0.99)))
     for n in sorted({a["drums"] for a, _ in both}):
         sub = [(a, b) for a, b in both if a["drums"] == n]
         pk = [rel(a["peak_rotation"], b["peak_rotation"]) for a, b in sub]
