@@ -187,8 +187,9 @@ def suite(rows):
         if r["pga"] < r["mu"] * G:
             groups[(r["mu"], r["pga"])].append(r)
     for (mu, a), rs in sorted(groups.items()):
-        p(f"- μ {mu:g} (μg = {mu * G:.2f} m/s²), PGA {a:g}: {sum(r['slip_starts'] > 0 for r in rs)}"
-          f" of {len(rs)} slide; peak slip > 1 mm: {sum(r['peak_slip'] > 1e-3 for r in rs)}; "
+        slid = sum(r["slip_starts"] > 0 for r in rs)
+        p(f"- μ {mu:g} (μg = {mu * G:.2f} m/s²), PGA {a:g}: {slid} of {len(rs)} slide; "
+          f"peak slip > 1 mm: {sum(r['peak_slip'] > 1e-3 for r in rs)}; "
           f"> 1 cm: {sum(r['peak_slip'] > 1e-2 for r in rs)}")
     p("")
     p("## Events and solver")
