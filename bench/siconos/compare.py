@@ -5,7 +5,7 @@ measured under the same load). Prints a Markdown table and writes `results.json`
 
     cargo build --release --example drum_column
     /usr/bin/python3 bench/siconos/compare.py [--quick] [--cases 0,2] [--dt 0.001,0.0005]
-        [--out FILE] [--impacts 1] [--only rocking|siconos] [--plain]
+        [--out FILE] [--impacts 1] [--only rocking|siconos] [--plain] [--rocking-args '…']
 
 `--quick` runs the first 10 s of each record (the full cases take tens of minutes in Siconos);
 `--cases 0,2` runs only those rows of CASES;
@@ -18,7 +18,9 @@ measured under the same load). Prints a Markdown table and writes `results.json`
 `--only CODE` runs one code (e.g. to re-run the library alone at the steps of a stored sweep);
 `--plain` runs the library as plain Moreau–Jean, the peer's scheme (`drum_column --locate 0
   --persistent 0 --projection 0`: no impact location, restitution zero also at persistent
-  contacts, no position projection), to separate the scheme's differences from the codes'.
+  contacts, no position projection), to separate the scheme's differences from the codes';
+`--rocking-args '--locate 0'` passes any other of these switches to the library (recorded with
+  the run as `rocking_scheme`).
 
 Each run records its wall time (`wall_s`, printed by the program itself, the time loop only) and
 the CPU time of the whole process (`cpu_s`, user + system, as `/usr/bin/time` reports it).
@@ -74,8 +76,12 @@ def main():
     out_path = opt("--out", os.path.join(HERE, "results.json"))
     impacts = opt("--impacts", "1")
     only = opt("--only", None)
-    plain = ["--locate", "0", "--persistent", "0", "--projection", "0"] if "--plain" in sys.argv \
-        else []
+    plain = opt("--rocking-args", "").split()
+    if "--plain" in sys.argv:
+        plain = ["--locate", "0", "--persistent", "0", "--projection", "0"]
+    scheme = "default"
+    if plain:
+        scheme = "plain" if "--plain" in sys.argv else " ".join(plain)
     rows = []
     for n, w, h, rec, pga, mu in cases:
         for dt in dts:
@@ -85,7 +91,7 @@ def main():
             if quick:
                 args += ["--duration", "10"]
             row = {"case": [n, w, h, rec, pga, mu], "dt": dt, "duration": 10 if quick else None,
-                   "rocking_scheme": "plain" if plain else "default", "impacts": int(impacts)}
+                   "rocking_scheme": scheme, "impacts": int(impacts)}
             if only in (None, "rocking"):
                 row["rocking"] = run([OURS] + args + ["--impacts", impacts] + plain)
             if only in (None, "siconos"):

@@ -4,8 +4,8 @@
 
     /usr/bin/python3 bench/siconos/convergence.py [--tol 0.05,0.02,0.005] FILE.json [FILE.json …]
 
-For every case and code (the library's default scheme, its plain Moreau–Jean variant
-`--plain`, Siconos) it prints, at each dt, the peak rotation and top displacement, their
+For every case and code (the library's default scheme, its variants — `--plain` Moreau–Jean,
+`--rocking-args …` —, Siconos) it prints, at each dt, the peak rotation and top displacement, their
 relative errors against the reference — the library's (default scheme's) value at its finest
 dt — and the CPU time of the run. Then, for each tolerance of `--tol` and each code, the
 coarsest dt from which on (that dt and every finer one run) the peak rotation and the top
@@ -13,8 +13,9 @@ displacement are within the tolerance of that reference, with its CPU time: the 
 two CPU times (whole processes, as `/usr/bin/time` counts them) is the speed-up at equal
 accuracy. When Siconos is within it at no dt run, the ratio printed is a lower bound
 (Siconos' finest run, which still misses, against the library's run that meets it).
-A first-order Richardson value `2 f(dt/2) − f(dt)` from each code's two finest steps is printed
-beside, to show where each is heading.
+Each code's three finest steps: the spread of their peak rotations (relative to the reference)
+and, when they are monotone, the first-order Richardson value `2 f(dt/2) − f(dt)` of the two
+finest, to show whether and where each is heading.
 """
 
 import json
@@ -30,8 +31,9 @@ def load(paths):
                 if code not in row:
                     continue
                 name = code
-                if code == "rocking" and row.get("rocking_scheme") == "plain":
-                    name = "rocking (plain)"
+                scheme = row.get("rocking_scheme", "default")
+                if code == "rocking" and scheme != "default":
+                    name = f"rocking ({scheme})"
                 runs.setdefault((case, name), {})[row["dt"]] = row[code]
     return runs
 
@@ -59,7 +61,8 @@ def main():
         print("|---|---|---|---|---|---|---|---|---|---|")
         ok_from = {}  # (code, tol) -> coarsest (dt, CPU) from which every finer dt is within
         finest = {}
-        for name in ("rocking", "rocking (plain)", "siconos"):
+        names = ["rocking"] + sorted(k for c, k in runs if c == case and k.startswith("rocking ("))
+        for name in names + ["siconos"]:
             r = runs.get((case, name))
             if not r:
                 continue
@@ -80,10 +83,15 @@ def main():
                     else:
                         within[t] = False
             dts = sorted(r)
-            if len(dts) >= 2:
-                f1, f2 = r[dts[1]]["peak_rotation"], r[dts[0]]["peak_rotation"]
-                print(f"| {name}: Richardson (dt {dts[1] * 1e3:g}, {dts[0] * 1e3:g} ms) | | "
-                      f"{2 * f2 - f1:.5g} | {(2 * f2 - f1) / ref_p - 1:+.2%} | | | | | | |")
+            if len(dts) >= 3:
+                f = [r[x]["peak_rotation"] for x in dts[:3]]  # finest first
+                spread = (max(f) - min(f)) / ref_p
+                trend = "not monotone"
+                if (f[0] - f[1]) * (f[1] - f[2]) > 0:
+                    x = 2 * f[0] - f[1]
+                    trend = f"Richardson {x:.5g} ({x / ref_p - 1:+.2%})"
+                print(f"| {name}: three finest steps | | spread {spread:.2%} | {trend} "
+                      f"| | | | | | |")
             finest[name] = r[dts[0]]
         if "rocking" not in finest or "siconos" not in finest:
             continue
