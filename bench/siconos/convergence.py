@@ -4,6 +4,9 @@
 
     /usr/bin/python3 bench/siconos/convergence.py [--tol 0.05,0.02,0.005] FILE.json [FILE.json …]
 
+A run of a code at a dt in a later file replaces the one in an earlier file (put the file whose
+two codes ran in one process last, so that the ratios are of runs under the same load).
+
 For every case and code (the library's default scheme, its variants — `--plain` Moreau–Jean,
 `--rocking-args …` —, Siconos) it prints, at each dt, the peak rotation and top displacement, their
 relative errors against the reference — the library's (default scheme's) value at its finest
