@@ -5,6 +5,7 @@
 #
 #   sh bench/siconos/sweep.sh            # everything below
 #   SICONOS=0 sh bench/siconos/sweep.sh  # the library's sweeps only (seconds), then the tables
+#   FINE=1 sh bench/siconos/sweep.sh     # also both codes at 0.125 ms on ten drums (+30-40 min)
 set -e
 B=bench/siconos
 PY=/usr/bin/python3
@@ -12,6 +13,9 @@ if [ "${SICONOS:-1}" != 0 ]; then
     # Both codes at each step, one process at a time, in one run (CPU ratios under one load).
     nice -n 5 $PY $B/compare.py --quick --cases 0,2 --dt 0.001,0.0005,0.00025 \
         --out $B/results_dt.json
+    if [ "${FINE:-0}" = 1 ]; then
+        nice -n 5 $PY $B/compare.py --quick --cases 2 --dt 0.000125 --out $B/results_dt_0125.json
+    fi
 fi
 # The library alone, down to 1/64 ms: its converged values (the reference of the errors).
 $PY $B/compare.py --quick --cases 0,2 --only rocking \
@@ -26,4 +30,5 @@ for s in locate persistent projection; do
         --dt 0.001,0.0005,0.00025,0.000125,0.0000625,0.00003125,0.000015625 \
         --out $B/results_dt_rocking_${s}0.json
 done
-$PY $B/convergence.py $B/results_dt_rocking*.json $B/results_dt.json
+$PY $B/convergence.py $B/results_dt_rocking*.json $B/results_dt.json \
+    $(ls $B/results_dt_0125.json 2>/dev/null)
