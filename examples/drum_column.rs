@@ -5,8 +5,12 @@
 //! ```text
 //! cargo run --release --example drum_column -- --drums 10 --width 1 --height 1 \
 //!     --record RECORD.AT2 --pga 4 --mu 0.5 --dt 0.001 [--duration 30] [--impacts 1] \
-//!     [--scheme moreau|auto]
+//!     [--scheme moreau|auto] [--locate 0|1] [--persistent 0|1] [--projection 0|1]
 //! ```
+//!
+//! `--locate 0 --persistent 0 --projection 0` (all default 1) is plain Moreau–Jean, the scheme
+//! of the Siconos peer: no impact located inside the step, restitution zero at every contact
+//! (also at persistent ones), no position projection. For comparisons only.
 //!
 //! `--scheme auto`: the automatic scheme (`rocking::contact::auto`): the event-driven driver
 //! where events are few, Moreau–Jean where they crowd.
@@ -28,6 +32,7 @@ fn main() {
     let mut duration: Option<f64> = None;
     let mut impacts = 1u32;
     let mut automatic = false;
+    let (mut locate, mut persistent, mut projection) = (true, true, true);
     while let Some(a) = args.next() {
         let v = args.next().unwrap_or_else(|| panic!("{a} needs a value"));
         match a.as_str() {
@@ -41,6 +46,9 @@ fn main() {
             "--duration" => duration = Some(v.parse().unwrap()),
             "--impacts" => impacts = v.parse().unwrap(),
             "--scheme" => automatic = v == "auto",
+            "--locate" => locate = v != "0",
+            "--persistent" => persistent = v != "0",
+            "--projection" => projection = v != "0",
             other => panic!("unknown argument {other}"),
         }
     }
@@ -48,10 +56,13 @@ fn main() {
     let duration = duration.unwrap_or(rec.duration());
     let motion = Excitation::record(rec.scaled_to_pga(pga).unwrap()).unwrap();
     let col = Column::new(vec![Block::rectangle(w, h, 2500.0 * w * h); n]).unwrap();
-    let opts = DrumOptions {
+    let mut opts = DrumOptions {
         dt,
         ..DrumOptions::quiet(duration, mu, impacts)
     };
+    opts.scheme.locate_impacts = locate;
+    opts.scheme.persistent_restitution = persistent;
+    opts.scheme.project = projection;
     let t0 = Instant::now();
     let out = if automatic {
         let mut driver = SimulationOptions::default();

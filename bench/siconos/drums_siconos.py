@@ -5,7 +5,7 @@ Same model as the library's drum scheme: each drum a rigid body in x, y, θ (mas
 uniform), in the frame of the ground (inertial load −m a_g); at each joint the two ends of the
 contact (the upper drum's corners on the lower face), each an interaction with a 2D Newton impact
 / Coulomb friction law (restitution 0, friction μ); Moreau–Jean (θ = ½) time stepping and the
-2D frictional contact problem solved by Lemke's algorithm. The contact geometry (gap and its
+2D frictional contact problem solved by nonsmooth Gauss–Seidel (tolerance 1e-10). The contact geometry (gap and its
 Jacobian) is re-linearised at every step (a LagrangianLinearTIR whose C and e are updated), the
 loads at the step's midpoint. No projection and no impact location (plain Moreau–Jean).
 

@@ -64,6 +64,12 @@ pub struct SchemeOptions {
     pub n_impacts: u32,
     /// Locate fast impacts inside the step (see the module documentation).
     pub locate_impacts: bool,
+    /// Restitution one at persistent contacts (step 4). `false`: zero everywhere, plain
+    /// Moreau–Jean (Siconos' `NewtonImpactFrictionNSL` with e = 0), for comparisons only.
+    pub persistent_restitution: bool,
+    /// Project positions back onto the contacts after each step (step 6). `false`: no
+    /// projection (the drums sink `O(g h²)` into each other), for comparisons only.
+    pub project: bool,
     /// Acceleration of gravity (m/s²).
     pub gravity: f64,
 }
@@ -74,6 +80,8 @@ impl Default for SchemeOptions {
             theta: 0.5,
             n_impacts: 1,
             locate_impacts: true,
+            persistent_restitution: true,
+            project: true,
             gravity: crate::model::column::GRAVITY,
         }
     }
@@ -429,7 +437,11 @@ impl Stepper {
             let ub = self.problem.rows_rates(k, &self.v);
             let mut shift = [0.0; 3];
             for c in 0..2 {
-                if self.contacts[k].active[c] && self.carried[k][c] && ub[c] >= -self.v_touch {
+                if self.options.persistent_restitution
+                    && self.contacts[k].active[c]
+                    && self.carried[k][c]
+                    && ub[c] >= -self.v_touch
+                {
                     shift[c] = ub[c];
                 }
             }
@@ -494,7 +506,9 @@ impl Stepper {
                 return Ok(());
             }
         }
-        self.project(a1, true)?;
+        if self.options.project {
+            self.project(a1, true)?;
+        }
         self.counters.substeps += 1;
         Ok(())
     }
