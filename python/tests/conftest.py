@@ -2,6 +2,7 @@
 from src/samples.rs) and the C ABI through ctypes (tests/python/smoke.py's declarations)."""
 import json
 import os
+import signal
 import sys
 from pathlib import Path
 
@@ -9,6 +10,19 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "tests" / "python"))
+
+
+@pytest.fixture(autouse=True)
+def python_handles_ctrl_c():
+    """Ctrl-C as an interactive Python sees it: SIGINT raises KeyboardInterrupt. A process started
+    with SIGINT ignored (a background job of a non-interactive shell, `nohup`) inherits SIG_IGN,
+    Python then installs no handler, and neither SIGINT nor `_thread.interrupt_main` interrupts
+    anything — the interrupt tests would test the launcher, not the package. Restored after."""
+    before = signal.getsignal(signal.SIGINT)
+    signal.signal(signal.SIGINT, signal.default_int_handler)
+    yield
+    if before is not None:
+        signal.signal(signal.SIGINT, before)
 
 
 @pytest.fixture(scope="session")
