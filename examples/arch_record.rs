@@ -7,7 +7,7 @@
 //! `LOCK_LOSS`, `LOCK_RATE` the lock's options, `EVENTS=1` prints every event;
 //! `ROCKING_LOOP_SCREEN=off|on|verify` the opening model's screen (docs/arches.md §4).
 use rocking::chain::arch::VoussoirArch;
-use rocking::driver::closed::LoopEventKind;
+use rocking::driver::closed::{LoopEventKind, Screen};
 use rocking::driver::{simulate_loop, LoopOptions, LoopState};
 use rocking::ground::records::parse_at2;
 use rocking::ground::FnMotion;
@@ -34,6 +34,7 @@ fn main() {
         lock_loss: std::env::var("LOCK_LOSS").map_or(1e-6, |s| s.parse().unwrap()),
         lock_rate: std::env::var("LOCK_RATE").ok().map(|s| s.parse().unwrap()),
         min_flight: std::env::var("FLIGHT").map_or(0.0, |s| s.parse().unwrap()),
+        screen: Screen::from_env(),
         ..LoopOptions::default()
     };
     let clock = std::time::Instant::now();

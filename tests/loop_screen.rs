@@ -94,3 +94,14 @@ fn the_screen_is_exact_on_arches_and_a_colonnade() {
     assert!(totals.0 > 1000, "{totals:?}");
     assert!(2 * totals.1 > totals.0, "{totals:?}");
 }
+
+/// The options are explicit: the default screen is `On` whatever the environment says (the
+/// environment variable is read only by harnesses that call `Screen::from_env`).
+#[test]
+fn the_default_screen_does_not_read_the_environment() {
+    std::env::set_var("ROCKING_LOOP_SCREEN", "off");
+    assert_eq!(LoopOptions::default().screen, Screen::On);
+    assert_eq!(Screen::from_env(), Screen::Off);
+    std::env::remove_var("ROCKING_LOOP_SCREEN");
+    assert_eq!(Screen::from_env(), Screen::On);
+}

@@ -48,8 +48,9 @@ pub struct LoopOptions {
     /// the closed loop resists (e.g. a record after its last exceedance of `λ g`): the loop can
     /// then never move again, so the rest of the run is known (exact). `None`: run to the end.
     pub quiet_after: Option<f64>,
-    /// The exact screen of the opening model while moving ([`Screen`]; default: from
-    /// `ROCKING_LOOP_SCREEN`, else [`Screen::On`]).
+    /// The exact screen of the opening model while moving ([`Screen`]; default [`Screen::On`]).
+    /// Set it explicitly to compare or verify (tests/loop_screen.rs); the library never reads
+    /// the environment for it ([`Screen::from_env`] is for harnesses that choose to).
     pub screen: Screen,
 }
 
@@ -66,14 +67,14 @@ pub enum Screen {
     Off,
     /// Skip the model where the screen proves its answer is the current configuration.
     On,
-    /// Ask the model always, and panic if it ever differs from what the screen proved (tests:
-    /// `ROCKING_LOOP_SCREEN=verify`).
+    /// Ask the model always, and panic if it ever differs from what the screen proved (tests).
     Verify,
 }
 
 impl Screen {
     /// From the environment variable `ROCKING_LOOP_SCREEN` (`off`, `on`, `verify`); unset or
-    /// anything else: [`Screen::On`].
+    /// anything else: [`Screen::On`]. Only for harnesses that opt in (the `arch_record` example,
+    /// the arch bench): [`LoopOptions::default`] does not call it.
     pub fn from_env() -> Screen {
         match std::env::var("ROCKING_LOOP_SCREEN").as_deref() {
             Ok("off") => Screen::Off,
@@ -99,7 +100,7 @@ impl Default for LoopOptions {
             lock_rate: None,
             min_flight: 0.0,
             quiet_after: None,
-            screen: Screen::from_env(),
+            screen: Screen::On,
         }
     }
 }
