@@ -318,3 +318,5 @@ pub extern "C" fn rocking_abi_version() -> u32 {
 
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod tests_column;

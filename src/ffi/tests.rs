@@ -5,7 +5,7 @@ use super::*;
 use crate::samples;
 use std::ffi::CStr;
 
-fn last_error() -> String {
+pub(super) fn last_error() -> String {
     unsafe { CStr::from_ptr(rocking_last_error_message()) }
         .to_string_lossy()
         .into_owned()
@@ -400,128 +400,6 @@ fn opening_through_the_c_abi() {
     assert_eq!(code, 0);
     assert_eq!(holds, 0);
     assert!(flags.contains(&1));
-}
-
-#[test]
-fn column_mass_matrix_entry_point_matches_eq10_and_checks_input() {
-    let w = [0.1, 0.1];
-    let h = [0.3, 0.3];
-    let m = [15.0, 15.0];
-    let mut out = [0.0; 16];
-    let mut load = [0.0; 4];
-    let code = unsafe {
-        rocking_column_mass_matrix(
-            2,
-            w.as_ptr(),
-            h.as_ptr(),
-            m.as_ptr(),
-            std::ptr::null(),
-            std::ptr::null(),
-            std::ptr::null(),
-            0.0,
-            9.81,
-            out.as_mut_ptr(),
-            load.as_mut_ptr(),
-        )
-    };
-    assert_eq!(code, 0);
-    assert!((out[2] - samples::THESIS_EQ10_MASS[0][2]).abs() < 1e-12);
-    let bad_w = [0.1, -0.1];
-    let before = out;
-    let code = unsafe {
-        rocking_column_mass_matrix(
-            2,
-            bad_w.as_ptr(),
-            h.as_ptr(),
-            m.as_ptr(),
-            std::ptr::null(),
-            std::ptr::null(),
-            std::ptr::null(),
-            0.0,
-            9.81,
-            out.as_mut_ptr(),
-            std::ptr::null_mut(),
-        )
-    };
-    assert_eq!(code, ROCKING_ERR_INVALID_GEOMETRY);
-    assert!(last_error().contains("block 1"), "{}", last_error());
-    let phi = [0.1, 0.0, 0.0, 0.0]; // phĭ must be <= 0
-    let code = unsafe {
-        rocking_column_mass_matrix(
-            2,
-            w.as_ptr(),
-            h.as_ptr(),
-            m.as_ptr(),
-            std::ptr::null(),
-            std::ptr::null(),
-            phi.as_ptr(),
-            0.0,
-            9.81,
-            out.as_mut_ptr(),
-            std::ptr::null_mut(),
-        )
-    };
-    assert_eq!(code, ROCKING_ERR_INVALID_ANGLES);
-    assert_eq!(out, before);
-}
-
-#[test]
-fn reduce_entry_point_reproduces_appendix_c() {
-    // Thesis Eq. C9–C13 with the exact three-point masses of a 1 × 4 m, 1 kg block.
-    let end = (17.0 / 12.0) / 8.0;
-    let masses = [end, 1.0 - 2.0 * end, end, end, 1.0 - 2.0 * end, end];
-    let nn = 12;
-    let mut nodal = vec![0.0; nn * nn];
-    for i in 0..6 {
-        nodal[i * nn + i] = masses[i];
-        nodal[(6 + i) * nn + 6 + i] = masses[i];
-    }
-    // B of Eq. C11, column-major (column 0 then column 1).
-    let b = [
-        0.0, -2.0, -4.0, -4.0, -6.0, -8.0, -0.5, -0.5, -0.5, -0.5, -0.5, -0.5, //
-        0.0, 0.0, 0.0, 0.0, -2.0, -4.0, 0.0, 0.0, 0.0, -0.5, -0.5, -0.5,
-    ];
-    let p: Vec<f64> = (0..12)
-        .map(|i| {
-            if i < 6 {
-                masses[i]
-            } else {
-                -9.81 * masses[i - 6]
-            }
-        })
-        .collect();
-    let mut rm = [0.0; 4];
-    let mut rl = [0.0; 2];
-    let code = unsafe {
-        rocking_reduce(
-            12,
-            2,
-            nodal.as_ptr(),
-            b.as_ptr(),
-            p.as_ptr(),
-            rm.as_mut_ptr(),
-            rl.as_mut_ptr(),
-        )
-    };
-    assert_eq!(code, 0, "{}", last_error());
-    let r3 = |x: f64| (x * 1000.0).round() / 1000.0;
-    assert_eq!([r3(rm[0]), r3(rm[1]), r3(rm[3])], [43.333, 13.667, 5.667]);
-    assert_eq!([r3(rl[0]), r3(rl[1])], [1.810, 2.905]);
-    // Not symmetric: refused, outputs untouched.
-    nodal[1] = 0.5;
-    let code = unsafe {
-        rocking_reduce(
-            12,
-            2,
-            nodal.as_ptr(),
-            b.as_ptr(),
-            p.as_ptr(),
-            rm.as_mut_ptr(),
-            rl.as_mut_ptr(),
-        )
-    };
-    assert_eq!(code, ROCKING_ERR_NOT_SYMMETRIC);
-    assert_eq!(r3(rm[0]), 43.333);
 }
 
 #[test]
