@@ -5,65 +5,46 @@ use super::tests::last_error;
 use super::*;
 use crate::samples;
 
+/// `rocking_column_mass_matrix` of two blocks of width `w`, heights 0.3 m and masses 15 kg at
+/// the DOF angles `phi` (NULL: straight), no ground acceleration, into `out` (and `load`).
+fn column_mass_matrix(
+    w: &[f64; 2],
+    phi: Option<&[f64; 4]>,
+    out: &mut [f64; 16],
+    load: Option<&mut [f64; 4]>,
+) -> i32 {
+    let h = [0.3, 0.3];
+    let m = [15.0, 15.0];
+    unsafe {
+        rocking_column_mass_matrix(
+            2,
+            w.as_ptr(),
+            h.as_ptr(),
+            m.as_ptr(),
+            std::ptr::null(),
+            std::ptr::null(),
+            phi.map_or(std::ptr::null(), |p| p.as_ptr()),
+            0.0,
+            9.81,
+            out.as_mut_ptr(),
+            load.map_or(std::ptr::null_mut(), |l| l.as_mut_ptr()),
+        )
+    }
+}
+
 #[test]
 fn column_mass_matrix_entry_point_matches_eq10_and_checks_input() {
     let w = [0.1, 0.1];
-    let h = [0.3, 0.3];
-    let m = [15.0, 15.0];
     let mut out = [0.0; 16];
     let mut load = [0.0; 4];
-    let code = unsafe {
-        rocking_column_mass_matrix(
-            2,
-            w.as_ptr(),
-            h.as_ptr(),
-            m.as_ptr(),
-            std::ptr::null(),
-            std::ptr::null(),
-            std::ptr::null(),
-            0.0,
-            9.81,
-            out.as_mut_ptr(),
-            load.as_mut_ptr(),
-        )
-    };
-    assert_eq!(code, 0);
+    assert_eq!(column_mass_matrix(&w, None, &mut out, Some(&mut load)), 0);
     assert!((out[2] - samples::THESIS_EQ10_MASS[0][2]).abs() < 1e-12);
-    let bad_w = [0.1, -0.1];
     let before = out;
-    let code = unsafe {
-        rocking_column_mass_matrix(
-            2,
-            bad_w.as_ptr(),
-            h.as_ptr(),
-            m.as_ptr(),
-            std::ptr::null(),
-            std::ptr::null(),
-            std::ptr::null(),
-            0.0,
-            9.81,
-            out.as_mut_ptr(),
-            std::ptr::null_mut(),
-        )
-    };
+    let code = column_mass_matrix(&[0.1, -0.1], None, &mut out, None);
     assert_eq!(code, ROCKING_ERR_INVALID_GEOMETRY);
     assert!(last_error().contains("block 1"), "{}", last_error());
     let phi = [0.1, 0.0, 0.0, 0.0]; // phĭ must be <= 0
-    let code = unsafe {
-        rocking_column_mass_matrix(
-            2,
-            w.as_ptr(),
-            h.as_ptr(),
-            m.as_ptr(),
-            std::ptr::null(),
-            std::ptr::null(),
-            phi.as_ptr(),
-            0.0,
-            9.81,
-            out.as_mut_ptr(),
-            std::ptr::null_mut(),
-        )
-    };
+    let code = column_mass_matrix(&w, Some(&phi), &mut out, None);
     assert_eq!(code, ROCKING_ERR_INVALID_ANGLES);
     assert_eq!(out, before);
 }
