@@ -6,6 +6,7 @@ measured under the same load). Prints a Markdown table and writes `results.json`
     cargo build --release --example drum_column
     /usr/bin/python3 bench/siconos/compare.py [--quick] [--cases 0,2] [--dt 0.001,0.0005]
         [--out FILE] [--impacts 1] [--only rocking|siconos] [--plain] [--rocking-args '…']
+        [--siconos-args '--linearise mid']
 
 `--quick` runs the first 10 s of each record (the full cases take tens of minutes in Siconos);
 `--cases 0,2` runs only those rows of CASES;
@@ -20,7 +21,10 @@ measured under the same load). Prints a Markdown table and writes `results.json`
   --persistent 0 --projection 0`: no impact location, restitution zero also at persistent
   contacts, no position projection), to separate the scheme's differences from the codes';
 `--rocking-args '--locate 0'` passes any other of these switches to the library (recorded with
-  the run as `rocking_scheme`).
+  the run as `rocking_scheme`);
+`--siconos-args '--linearise mid'` passes options to the peer (`drums_siconos.py`; `--linearise
+  mid`: gaps linearised at the step's predicted midpoint, as the library does, instead of at its
+  start), recorded as `siconos_scheme`.
 
 Each run records its wall time (`wall_s`, printed by the program itself, the time loop only) and
 the CPU time of the whole process (`cpu_s`, user + system, as `/usr/bin/time` reports it).
@@ -79,6 +83,7 @@ def main():
     plain = opt("--rocking-args", "").split()
     if "--plain" in sys.argv:
         plain = ["--locate", "0", "--persistent", "0", "--projection", "0"]
+    peer = opt("--siconos-args", "").split()
     scheme = "default"
     if plain:
         scheme = "plain" if "--plain" in sys.argv else " ".join(plain)
@@ -91,12 +96,13 @@ def main():
             if quick:
                 args += ["--duration", "10"]
             row = {"case": [n, w, h, rec, pga, mu], "dt": dt, "duration": 10 if quick else None,
-                   "rocking_scheme": scheme, "impacts": int(impacts)}
+                   "rocking_scheme": scheme, "impacts": int(impacts),
+                   "siconos_scheme": " ".join(peer) or "default"}
             if only in (None, "rocking"):
                 row["rocking"] = run([OURS] + args + ["--impacts", impacts] + plain)
             if only in (None, "siconos"):
                 row["siconos"] = run([sys.executable, os.path.join(HERE, "drums_siconos.py")]
-                                     + args)
+                                     + args + peer)
             rows.append(row)
             with open(out_path, "w") as f:
                 json.dump(rows, f, indent=1)
