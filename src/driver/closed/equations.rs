@@ -209,27 +209,42 @@ impl<'a> LoopEquations<'a> {
 
 /// Solves the dense `a x = b` in place (`b` becomes `x`) by Gaussian elimination with partial
 /// pivoting; `false` if a pivot is zero or the result is not finite.
+///
+/// The pivot is the last row of largest `|a_ic|` (`total_cmp`, as `Iterator::max_by`). Only the
+/// entries right of the pivot column are swapped and updated: those left of it and below the
+/// diagonal are never read again (the multiplier is taken before), so the factors and the
+/// solution are those of the full update to the bit.
 pub(super) fn solve_in_place(a: &mut [f64], b: &mut [f64]) -> bool {
     let n = b.len();
+    debug_assert_eq!(a.len(), n * n);
     for col in 0..n {
-        let Some(piv) =
-            (col..n).max_by(|&i, &j| a[i * n + col].abs().total_cmp(&a[j * n + col].abs()))
-        else {
-            return false;
-        };
+        let mut piv = col;
+        let mut best = a[col * n + col].abs();
+        for i in col + 1..n {
+            let v = a[i * n + col].abs();
+            if v.total_cmp(&best) != std::cmp::Ordering::Less {
+                piv = i;
+                best = v;
+            }
+        }
         if a[piv * n + col] == 0.0 {
             return false;
         }
-        for k in 0..n {
-            a.swap(col * n + k, piv * n + k);
+        if piv != col {
+            let (top, bottom) = a.split_at_mut(piv * n);
+            top[col * n + col..(col + 1) * n].swap_with_slice(&mut bottom[col..n]);
+            b.swap(col, piv);
         }
-        b.swap(col, piv);
-        for r in col + 1..n {
-            let f = a[r * n + col] / a[col * n + col];
-            for k in col..n {
-                a[r * n + k] -= f * a[col * n + k];
+        let (top, bottom) = a.split_at_mut((col + 1) * n);
+        let prow = &top[col * n + col..];
+        let (d, prow) = (prow[0], &prow[1..]);
+        let bc = b[col];
+        for (row, br) in bottom.chunks_exact_mut(n).zip(&mut b[col + 1..]) {
+            let f = row[col] / d;
+            for (x, p) in row[col + 1..].iter_mut().zip(prow) {
+                *x -= f * p;
             }
-            b[r] -= f * b[col];
+            *br -= f * bc;
         }
     }
     for r in (0..n).rev() {

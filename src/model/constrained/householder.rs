@@ -153,9 +153,14 @@ impl PivotedQr {
                         *x -= ui * vj;
                     }
                 } else {
-                    for (j, x) in row.iter_mut().enumerate() {
-                        let vj = if j >= s { v[j - s] } else { 0.0 };
-                        *x -= vi * w[j] + ui * vj;
+                    // Columns before s have v_j = 0 (the product `ui * 0.0` kept: the same
+                    // operations as one loop over every column, in two branch-free loops).
+                    let (head, tail) = row.split_at_mut(s);
+                    for (x, wj) in head.iter_mut().zip(&w[..s]) {
+                        *x -= vi * wj + ui * 0.0;
+                    }
+                    for ((x, wj), vj) in tail.iter_mut().zip(&w[s..]).zip(v) {
+                        *x -= vi * wj + ui * vj;
                     }
                 }
             }
