@@ -239,6 +239,11 @@ impl Chain {
         pose.left_pivots.clear();
         pose.centres.clear();
         pose.maps.clear();
+        // One allocation each for a new pose (not one growth per push).
+        pose.right_pivots.reserve(nj);
+        pose.left_pivots.reserve(nj);
+        pose.centres.reserve(nb);
+        pose.maps.reserve(nb);
         pose.support = RigidMap::IDENTITY;
         let mut map = RigidMap::IDENTITY;
         for (k, joint) in self.joints.iter().enumerate() {

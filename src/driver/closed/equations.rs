@@ -19,6 +19,49 @@ pub struct LoopEquations<'a> {
     velocity: Vec<f64>,
     scratch: Vec<[f64; 2]>,
     screen: Vec<f64>,
+    /// The last evaluation at the start of a step or of a screen (its open DOFs, `a_g`, `x`,
+    /// `v` and accelerations): the next step's first stage, and a located closing's first
+    /// stage, evaluate the same arguments again (the function is pure: the same bits).
+    memo: Memo,
+    /// The RK4 stages' vectors.
+    stages: Vec<Vec<f64>>,
+}
+
+#[derive(Clone, Debug, Default)]
+struct Memo {
+    valid: bool,
+    open: Vec<usize>,
+    ag: u64,
+    x: Vec<f64>,
+    v: Vec<f64>,
+    out: Vec<f64>,
+}
+
+fn same_bits(a: &[f64], b: &[f64]) -> bool {
+    a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits())
+}
+
+impl Memo {
+    fn matches(&self, open: &[usize], ag: f64, x: &[f64], v: &[f64]) -> bool {
+        self.valid
+            && self.open == open
+            && self.ag == ag.to_bits()
+            && same_bits(&self.x, x)
+            && same_bits(&self.v, v)
+    }
+
+    fn store(&mut self, open: &[usize], ag: f64, x: &[f64], v: &[f64], out: &[f64]) {
+        self.valid = true;
+        self.open.clear();
+        self.open.extend_from_slice(open);
+        self.ag = ag.to_bits();
+        self.x.clear();
+        self.x.extend_from_slice(x);
+        self.v.clear();
+        self.v.extend_from_slice(v);
+        self.out.clear();
+        self.out.extend_from_slice(out);
+    }
 }
 
 impl<'a> LoopEquations<'a> {
@@ -36,6 +79,8 @@ impl<'a> LoopEquations<'a> {
             velocity: Vec::new(),
             scratch: Vec::new(),
             screen: Vec::new(),
+            memo: Memo::default(),
+            stages: Vec::new(),
         }
     }
 
@@ -131,7 +176,11 @@ impl<'a> LoopEquations<'a> {
         let mut a = std::mem::take(&mut self.screen);
         a.clear();
         a.resize(nf, 0.0);
-        let holds = self.accelerations(open, ag, x, v, &mut a) && {
+        let ok = self.accelerations(open, ag, x, v, &mut a);
+        if ok {
+            self.memo.store(open, ag, x, v, &a);
+        }
+        let holds = ok && {
             let n = statuses.len();
             let mu = [self.rhs[nf], self.rhs[nf + 1], self.rhs[nf + 2]];
             let pose = &self.pose;
@@ -156,6 +205,26 @@ impl<'a> LoopEquations<'a> {
         holds
     }
 
+    /// [`LoopEquations::accelerations`] through the memo of the last first stage.
+    fn first_stage(
+        &mut self,
+        open: &[usize],
+        ag: f64,
+        x: &[f64],
+        v: &[f64],
+        out: &mut [f64],
+    ) -> bool {
+        if self.memo.matches(open, ag, x, v) {
+            out.copy_from_slice(&self.memo.out);
+            return true;
+        }
+        let ok = self.accelerations(open, ag, x, v, out);
+        if ok {
+            self.memo.store(open, ag, x, v, out);
+        }
+        ok
+    }
+
     /// One classical RK4 step of length `dt` from `(x, v)` at time `t` under `ag(t)`: the state
     /// at `t + dt` in `(x1, v1)`. Returns `false` if an evaluation failed
     /// ([`LoopEquations::accelerations`]).
@@ -172,37 +241,35 @@ impl<'a> LoopEquations<'a> {
         v1: &mut [f64],
     ) -> bool {
         let n = open.len();
-        let axpy = |a: &[f64], b: &[f64], h: f64| -> Vec<f64> {
-            a.iter().zip(b).map(|(a, b)| a + h * b).collect()
+        let axpy = |out: &mut Vec<f64>, a: &[f64], b: &[f64], h: f64| {
+            out.clear();
+            out.extend(a.iter().zip(b).map(|(a, b)| a + h * b));
         };
-        let mut k1a = vec![0.0; n];
-        let mut k2a = vec![0.0; n];
-        let mut k3a = vec![0.0; n];
-        let mut k4a = vec![0.0; n];
-        let k1x = v.to_vec();
-        let ok1 = self.accelerations(open, ag(t), x, v, &mut k1a);
-        let k2x = axpy(v, &k1a, dt / 2.0);
-        let ok2 = self.accelerations(
-            open,
-            ag(t + dt / 2.0),
-            &axpy(x, &k1x, dt / 2.0),
-            &k2x,
-            &mut k2a,
-        );
-        let k3x = axpy(v, &k2a, dt / 2.0);
-        let ok3 = self.accelerations(
-            open,
-            ag(t + dt / 2.0),
-            &axpy(x, &k2x, dt / 2.0),
-            &k3x,
-            &mut k3a,
-        );
-        let k4x = axpy(v, &k3a, dt);
-        let ok4 = self.accelerations(open, ag(t + dt), &axpy(x, &k3x, dt), &k4x, &mut k4a);
+        let mut st = std::mem::take(&mut self.stages);
+        st.resize(9, Vec::new());
+        let [k1a, k2a, k3a, k4a, k2x, k3x, k4x, xs, ..] = &mut st[..] else {
+            unreachable!()
+        };
+        for k in [&mut *k1a, &mut *k2a, &mut *k3a, &mut *k4a] {
+            k.clear();
+            k.resize(n, 0.0);
+        }
+        let k1x = v;
+        let ok1 = self.first_stage(open, ag(t), x, v, k1a);
+        axpy(k2x, v, k1a, dt / 2.0);
+        axpy(xs, x, k1x, dt / 2.0);
+        let ok2 = self.accelerations(open, ag(t + dt / 2.0), xs, k2x, k2a);
+        axpy(k3x, v, k2a, dt / 2.0);
+        axpy(xs, x, k2x, dt / 2.0);
+        let ok3 = self.accelerations(open, ag(t + dt / 2.0), xs, k3x, k3a);
+        axpy(k4x, v, k3a, dt);
+        axpy(xs, x, k3x, dt);
+        let ok4 = self.accelerations(open, ag(t + dt), xs, k4x, k4a);
         for i in 0..n {
             x1[i] = x[i] + dt / 6.0 * (k1x[i] + 2.0 * k2x[i] + 2.0 * k3x[i] + k4x[i]);
             v1[i] = v[i] + dt / 6.0 * (k1a[i] + 2.0 * k2a[i] + 2.0 * k3a[i] + k4a[i]);
         }
+        self.stages = st;
         ok1 && ok2 && ok3 && ok4
     }
 }

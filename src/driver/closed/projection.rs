@@ -99,11 +99,24 @@ pub fn project_positions(
     reach: f64,
     iterations: usize,
 ) -> f64 {
+    let mut pose = chain.pose(phi);
+    project_positions_posed(chain, open, phi, reach, iterations, &mut pose)
+}
+
+/// [`project_positions`] with `pose` the pose of `phi` on entry; on return the pose of the
+/// final `phi` (the driver's next uses of it need not build it again).
+pub(super) fn project_positions_posed(
+    chain: &Chain,
+    open: &[usize],
+    phi: &mut [f64],
+    reach: f64,
+    iterations: usize,
+    pose: &mut ChainPose,
+) -> f64 {
     let m = chain.n_dofs();
     let size = |r: [f64; 3]| r[1].hypot(r[2]).max(r[0].abs() * reach);
     let depth = |d: usize, x: f64| if d < m / 2 { -x } else { x };
-    let mut pose = chain.pose(phi);
-    let mut r = chain.closure_residual(&pose);
+    let mut r = chain.closure_residual(pose);
     for _ in 0..iterations {
         if size(r) == 0.0 {
             break;
@@ -112,7 +125,7 @@ pub fn project_positions(
         let moved = pose.support.apply(o);
         let mut jac = vec![0.0; 3 * m];
         for &a in open {
-            let p = chain.pivot(&pose, a);
+            let p = chain.pivot(pose, a);
             jac[a] = 1.0;
             jac[m + a] = p[1] - moved[1];
             jac[2 * m + a] = moved[0] - p[0];
@@ -122,7 +135,7 @@ pub fn project_positions(
             let mut dx = vec![0.0; free.len()];
             if free.len() < 3
                 || !kkt(
-                    &sub_mass(chain, &pose, &free),
+                    &sub_mass(chain, pose, &free),
                     &jac,
                     m,
                     &free,
@@ -155,7 +168,7 @@ pub fn project_positions(
             break;
         }
         phi.copy_from_slice(&trial);
-        (pose, r) = (trial_pose, trial_r);
+        (*pose, r) = (trial_pose, trial_r);
     }
     size(r)
 }

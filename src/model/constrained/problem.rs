@@ -331,6 +331,7 @@ impl ConstrainedProblem {
         let (k, p) = (set.len(), self.p());
         let c = rows.len();
         ws.kt.clear();
+        ws.kt.reserve(k * c);
         for &s in set {
             ws.kt.extend(rows.iter().map(|&row| self.c[row * p + s]));
         }
@@ -349,12 +350,14 @@ impl ConstrainedProblem {
         }
         // Reduced problem in u = Qᵀ y: H = Qᵀ Â_SS Q.
         ws.h.clear();
+        ws.h.reserve(k * k);
         for &r in set {
             ws.h.extend(set.iter().map(|&s| self.cone.a[r * p + s]));
         }
         ws.qr.congruence(&mut ws.h);
         let free = k - rank;
         ws.factor.clear();
+        ws.factor.reserve(free * free);
         for i in rank..k {
             ws.factor
                 .extend_from_slice(&ws.h[i * k + rank..(i + 1) * k]);
