@@ -339,15 +339,19 @@ impl Chain {
         let (nj, m) = (self.n_joints(), self.n_dofs());
         let nb = self.n_bodies();
         let mut out = vec![0.0; m * m];
+        // Each DOF's joint and pivot once (the entries' arithmetic as before).
+        let joint: Vec<usize> = (0..m).map(|a| a % nj).collect();
+        let pivots: Vec<[f64; 2]> = (0..m).map(|a| self.pivot(pose, a)).collect();
         for a in 0..m {
+            let (ja, pa) = (joint[a], pivots[a]);
             for b in a..m {
-                let k = (a % nj).max(b % nj).min(nb);
+                let k = ja.max(joint[b]).min(nb);
                 let s0 = pose.suffix_mass[k];
                 if s0 == 0.0 {
                     continue;
                 }
                 let g = pose.suffix_centre[k];
-                let (pa, pb) = (self.pivot(pose, a), self.pivot(pose, b));
+                let pb = pivots[b];
                 let v = s0 * dot(sub(g, pa), sub(g, pb)) + pose.suffix_polar[k];
                 out[a * m + b] = v;
                 out[b * m + a] = v;

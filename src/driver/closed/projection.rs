@@ -58,13 +58,13 @@ pub fn project_rates(chain: &Chain, pose: &ChainPose, open: &[usize], rates: &mu
     let m = chain.n_dofs();
     let g = chain.closure_matrix(pose);
     // `M_F· v` over the moving DOFs only (the zero rates add nothing to the sums).
-    let moving: Vec<usize> = (0..m).filter(|&e| rates[e] != 0.0).collect();
+    let moving: Vec<bool> = rates.iter().map(|&r| r != 0.0).collect();
     let mut b: Vec<f64> = open
         .iter()
         .map(|&d| {
             (0..m)
                 .map(|e| {
-                    if moving.binary_search(&e).is_ok() {
+                    if moving[e] {
                         chain.mass_entry(pose, d, e) * rates[e]
                     } else {
                         0.0
