@@ -92,7 +92,12 @@ impl RigidMap {
 
     /// Image of a point.
     pub fn apply(&self, x: [f64; 2]) -> [f64; 2] {
-        let (s, c) = self.angle.sin_cos();
+        self.apply_with(self.angle.sin_cos(), x)
+    }
+
+    /// [`RigidMap::apply`] with `(sin, cos)` of the map's angle given (the same arithmetic).
+    #[inline]
+    fn apply_with(&self, (s, c): (f64, f64), x: [f64; 2]) -> [f64; 2] {
         [
             c * x[0] - s * x[1] + self.shift[0],
             s * x[0] + c * x[1] + self.shift[1],
@@ -246,9 +251,11 @@ impl Chain {
         pose.maps.reserve(nb);
         pose.support = RigidMap::IDENTITY;
         let mut map = RigidMap::IDENTITY;
+        // `sin_cos` of the map's angle, taken again only when the map turns.
+        let mut sc = map.angle.sin_cos();
         for (k, joint) in self.joints.iter().enumerate() {
-            let right = map.apply(joint.right_corner());
-            let left = map.apply(joint.left_corner());
+            let right = map.apply_with(sc, joint.right_corner());
+            let left = map.apply_with(sc, joint.left_corner());
             let (theta, pivot) = if phi[k] != 0.0 {
                 (phi[k], right)
             } else {
@@ -256,11 +263,12 @@ impl Chain {
             };
             if theta != 0.0 {
                 map = map.then_rotate(pivot, theta);
+                sc = map.angle.sin_cos();
             }
             pose.right_pivots.push(right);
             pose.left_pivots.push(left);
             if k < nb {
-                pose.centres.push(map.apply(self.bodies[k].centre));
+                pose.centres.push(map.apply_with(sc, self.bodies[k].centre));
                 pose.maps.push(map);
             } else {
                 pose.support = map;

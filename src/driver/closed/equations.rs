@@ -303,13 +303,15 @@ pub(super) fn solve_in_place(a: &mut [f64], b: &mut [f64]) -> bool {
             b.swap(col, piv);
         }
         let (top, bottom) = a.split_at_mut((col + 1) * n);
-        let prow = &top[col * n + col..];
-        let (d, prow) = (prow[0], &prow[1..]);
+        let len = n - col - 1;
+        let d = top[col * n + col];
+        let prow = &top[col * n + col + 1..][..len];
         let bc = b[col];
         for (row, br) in bottom.chunks_exact_mut(n).zip(&mut b[col + 1..]) {
             let f = row[col] / d;
-            for (x, p) in row[col + 1..].iter_mut().zip(prow) {
-                *x -= f * p;
+            let tail = &mut row[col + 1..][..len];
+            for j in 0..len {
+                tail[j] -= f * prow[j];
             }
             *br -= f * bc;
         }
