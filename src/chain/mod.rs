@@ -298,6 +298,31 @@ impl Chain {
         }
     }
 
+    /// The joint and the pivot of DOF `a` in the pose, for [`Chain::mass_entry_of`].
+    #[inline]
+    pub fn dof_pivot(&self, pose: &ChainPose, a: usize) -> (usize, [f64; 2]) {
+        let nj = self.n_joints();
+        (if a < nj { a } else { a - nj }, self.pivot(pose, a))
+    }
+
+    /// [`Chain::mass_entry`] of two DOFs given by [`Chain::dof_pivot`] (the same arithmetic,
+    /// without finding the joints and pivots again in a loop over pairs).
+    #[inline]
+    pub fn mass_entry_of(
+        &self,
+        pose: &ChainPose,
+        (ka, pa): (usize, [f64; 2]),
+        (kb, pb): (usize, [f64; 2]),
+    ) -> f64 {
+        let k = ka.max(kb).min(self.n_bodies());
+        let s0 = pose.suffix_mass[k];
+        if s0 == 0.0 {
+            return 0.0;
+        }
+        let g = pose.suffix_centre[k];
+        s0 * dot(sub(g, pa), sub(g, pb)) + pose.suffix_polar[k]
+    }
+
     /// Entry `M[a][b]` of the mass matrix of the cut chain in the pose ([`Chain::mass_matrix`]).
     #[inline]
     pub fn mass_entry(&self, pose: &ChainPose, a: usize, b: usize) -> f64 {

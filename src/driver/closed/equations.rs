@@ -19,6 +19,8 @@ pub struct LoopEquations<'a> {
     velocity: Vec<f64>,
     scratch: Vec<[f64; 2]>,
     screen: Vec<f64>,
+    /// The open DOFs' joints and pivots in the pose (`Chain::dof_pivot`).
+    pivots: Vec<(usize, [f64; 2])>,
     /// The last evaluation at the start of a step or of a screen (its open DOFs, `a_g`, `x`,
     /// `v` and accelerations): the next step's first stage, and a located closing's first
     /// stage, evaluate the same arguments again (the function is pure: the same bits).
@@ -79,6 +81,7 @@ impl<'a> LoopEquations<'a> {
             velocity: Vec::new(),
             scratch: Vec::new(),
             screen: Vec::new(),
+            pivots: Vec::new(),
             memo: Memo::default(),
             stages: Vec::new(),
         }
@@ -127,14 +130,17 @@ impl<'a> LoopEquations<'a> {
         self.kkt.resize(k * k, 0.0);
         self.rhs.clear();
         self.rhs.resize(k, 0.0);
-        let (a, b) = (&mut self.kkt, &mut self.rhs);
+        self.pivots.clear();
+        self.pivots
+            .extend(open.iter().map(|&d| self.chain.dof_pivot(pose, d)));
+        let (a, b, piv) = (&mut self.kkt, &mut self.rhs, &self.pivots);
         for (i, &di) in open.iter().enumerate() {
-            for (j, &dj) in open.iter().enumerate().skip(i) {
-                let mij = self.chain.mass_entry(pose, di, dj);
+            for j in i..nf {
+                let mij = self.chain.mass_entry_of(pose, piv[i], piv[j]);
                 a[i * k + j] = mij;
                 a[j * k + i] = mij;
             }
-            let p = self.chain.pivot(pose, di);
+            let p = piv[i].1;
             for (r, g) in [1.0, p[1], -p[0]].into_iter().enumerate() {
                 a[i * k + nf + r] = g;
                 a[(nf + r) * k + i] = g;
@@ -187,10 +193,12 @@ impl<'a> LoopEquations<'a> {
             let (mut worst, mut scale) = (f64::INFINITY, 0.0_f64);
             for k in (0..n).filter(|&k| !statuses[k].is_open()) {
                 for (d, sign) in [(k, -1.0), (n + k, 1.0)] {
-                    let ma: f64 = open
+                    let pd = self.chain.dof_pivot(pose, d);
+                    let ma: f64 = self
+                        .pivots
                         .iter()
                         .zip(&a)
-                        .map(|(&j, &aj)| self.chain.mass_entry(pose, d, j) * aj)
+                        .map(|(&pj, &aj)| self.chain.mass_entry_of(pose, pd, pj) * aj)
                         .sum();
                     let load = self.chain.load_entry(pose, d, ag, self.gravity) + self.velocity[d];
                     let p = self.chain.pivot(pose, d);

@@ -228,13 +228,19 @@ impl<'a> Runner<'a> {
         let m = self.chain.n_dofs();
         // Over the moving DOFs only (the others' zero rates add nothing to the sums).
         let moving: Vec<usize> = (0..m).filter(|&a| s_rates[a] != 0.0).collect();
+        let piv: Vec<(usize, [f64; 2])> = moving
+            .iter()
+            .map(|&a| self.chain.dof_pivot(pose, a))
+            .collect();
         0.5 * moving
             .iter()
-            .map(|&a| {
+            .zip(&piv)
+            .map(|(&a, &pa)| {
                 s_rates[a]
                     * moving
                         .iter()
-                        .map(|&b| self.chain.mass_entry(pose, a, b) * s_rates[b])
+                        .zip(&piv)
+                        .map(|(&b, &pb)| self.chain.mass_entry_of(pose, pa, pb) * s_rates[b])
                         .sum::<f64>()
             })
             .sum::<f64>()

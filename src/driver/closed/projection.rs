@@ -16,9 +16,10 @@ use crate::chain::{Chain, ChainPose};
 fn sub_mass(chain: &Chain, pose: &ChainPose, open: &[usize]) -> Vec<f64> {
     let nf = open.len();
     let mut out = vec![0.0; nf * nf];
-    for (i, &di) in open.iter().enumerate() {
-        for (j, &dj) in open.iter().enumerate().skip(i) {
-            let v = chain.mass_entry(pose, di, dj);
+    let piv: Vec<(usize, [f64; 2])> = open.iter().map(|&d| chain.dof_pivot(pose, d)).collect();
+    for i in 0..nf {
+        for j in i..nf {
+            let v = chain.mass_entry_of(pose, piv[i], piv[j]);
             out[i * nf + j] = v;
             out[j * nf + i] = v;
         }
