@@ -371,23 +371,26 @@ impl Chain {
     pub fn mass_matrix(&self, pose: &ChainPose) -> Vec<f64> {
         let (nj, m) = (self.n_joints(), self.n_dofs());
         let nb = self.n_bodies();
-        let mut out = vec![0.0; m * m];
-        // Each DOF's joint and pivot once (the entries' arithmetic as before).
+        // Each DOF's joint and pivot once; row by row, the entries left of the diagonal copied
+        // from the rows above (the entries' arithmetic as before, no zero fill).
         let joint: Vec<usize> = (0..m).map(|a| a % nj).collect();
         let pivots: Vec<[f64; 2]> = (0..m).map(|a| self.pivot(pose, a)).collect();
+        let mut out = Vec::with_capacity(m * m);
         for a in 0..m {
+            for b in 0..a {
+                out.push(out[b * m + a]);
+            }
             let (ja, pa) = (joint[a], pivots[a]);
             for b in a..m {
                 let k = ja.max(joint[b]).min(nb);
                 let s0 = pose.suffix_mass[k];
-                if s0 == 0.0 {
-                    continue;
-                }
-                let g = pose.suffix_centre[k];
-                let pb = pivots[b];
-                let v = s0 * dot(sub(g, pa), sub(g, pb)) + pose.suffix_polar[k];
-                out[a * m + b] = v;
-                out[b * m + a] = v;
+                let v = if s0 == 0.0 {
+                    0.0
+                } else {
+                    let g = pose.suffix_centre[k];
+                    s0 * dot(sub(g, pa), sub(g, pivots[b])) + pose.suffix_polar[k]
+                };
+                out.push(v);
             }
         }
         out
