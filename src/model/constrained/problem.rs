@@ -110,13 +110,21 @@ impl ConstrainedProblem {
         let mut b = vec![0.0; p];
         let mut cg = vec![0.0; nc * p];
         for i in 0..p {
+            let ti = gens[i].terms();
             for j in i..p {
-                let mut s = 0.0;
-                for &(di, ci) in gens[i].terms() {
-                    for &(dj, cj) in gens[j].terms() {
-                        s += ci * cj * mass[di * m + dj];
+                let tj = gens[j].terms();
+                let s = if let ([(di, ci)], [(dj, cj)]) = (ti, tj) {
+                    // One term each (unit generators): the loop's single `0.0 + c_i c_j M`.
+                    0.0 + ci * cj * mass[di * m + dj]
+                } else {
+                    let mut s = 0.0;
+                    for &(di, ci) in ti {
+                        for &(dj, cj) in tj {
+                            s += ci * cj * mass[di * m + dj];
+                        }
                     }
-                }
+                    s
+                };
                 a[i * p + j] = s;
                 a[j * p + i] = s;
             }
