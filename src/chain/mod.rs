@@ -92,7 +92,12 @@ impl RigidMap {
 
     /// Image of a point.
     pub fn apply(&self, x: [f64; 2]) -> [f64; 2] {
-        let (s, c) = self.angle.sin_cos();
+        self.apply_with(self.angle.sin_cos(), x)
+    }
+
+    /// [`RigidMap::apply`] with `(sin, cos)` of the map's angle given (the same arithmetic).
+    #[inline]
+    fn apply_with(&self, (s, c): (f64, f64), x: [f64; 2]) -> [f64; 2] {
         [
             c * x[0] - s * x[1] + self.shift[0],
             s * x[0] + c * x[1] + self.shift[1],
@@ -239,11 +244,18 @@ impl Chain {
         pose.left_pivots.clear();
         pose.centres.clear();
         pose.maps.clear();
+        // One allocation each for a new pose (not one growth per push).
+        pose.right_pivots.reserve(nj);
+        pose.left_pivots.reserve(nj);
+        pose.centres.reserve(nb);
+        pose.maps.reserve(nb);
         pose.support = RigidMap::IDENTITY;
         let mut map = RigidMap::IDENTITY;
+        // `sin_cos` of the map's angle, taken again only when the map turns.
+        let mut sc = map.angle.sin_cos();
         for (k, joint) in self.joints.iter().enumerate() {
-            let right = map.apply(joint.right_corner());
-            let left = map.apply(joint.left_corner());
+            let right = map.apply_with(sc, joint.right_corner());
+            let left = map.apply_with(sc, joint.left_corner());
             let (theta, pivot) = if phi[k] != 0.0 {
                 (phi[k], right)
             } else {
@@ -251,11 +263,12 @@ impl Chain {
             };
             if theta != 0.0 {
                 map = map.then_rotate(pivot, theta);
+                sc = map.angle.sin_cos();
             }
             pose.right_pivots.push(right);
             pose.left_pivots.push(left);
             if k < nb {
-                pose.centres.push(map.apply(self.bodies[k].centre));
+                pose.centres.push(map.apply_with(sc, self.bodies[k].centre));
                 pose.maps.push(map);
             } else {
                 pose.support = map;
@@ -283,6 +296,31 @@ impl Chain {
             pose.suffix_centre[j] = g;
             pose.suffix_polar[j] = j1 + m1 * dot(d1, d1) + i + m * dot(d, d);
         }
+    }
+
+    /// The joint and the pivot of DOF `a` in the pose, for [`Chain::mass_entry_of`].
+    #[inline]
+    pub fn dof_pivot(&self, pose: &ChainPose, a: usize) -> (usize, [f64; 2]) {
+        let nj = self.n_joints();
+        (if a < nj { a } else { a - nj }, self.pivot(pose, a))
+    }
+
+    /// [`Chain::mass_entry`] of two DOFs given by [`Chain::dof_pivot`] (the same arithmetic,
+    /// without finding the joints and pivots again in a loop over pairs).
+    #[inline]
+    pub fn mass_entry_of(
+        &self,
+        pose: &ChainPose,
+        (ka, pa): (usize, [f64; 2]),
+        (kb, pb): (usize, [f64; 2]),
+    ) -> f64 {
+        let k = ka.max(kb).min(self.n_bodies());
+        let s0 = pose.suffix_mass[k];
+        if s0 == 0.0 {
+            return 0.0;
+        }
+        let g = pose.suffix_centre[k];
+        s0 * dot(sub(g, pa), sub(g, pb)) + pose.suffix_polar[k]
     }
 
     /// Entry `M[a][b]` of the mass matrix of the cut chain in the pose ([`Chain::mass_matrix`]).
@@ -333,19 +371,26 @@ impl Chain {
     pub fn mass_matrix(&self, pose: &ChainPose) -> Vec<f64> {
         let (nj, m) = (self.n_joints(), self.n_dofs());
         let nb = self.n_bodies();
-        let mut out = vec![0.0; m * m];
+        // Each DOF's joint and pivot once; row by row, the entries left of the diagonal copied
+        // from the rows above (the entries' arithmetic as before, no zero fill).
+        let joint: Vec<usize> = (0..m).map(|a| a % nj).collect();
+        let pivots: Vec<[f64; 2]> = (0..m).map(|a| self.pivot(pose, a)).collect();
+        let mut out = Vec::with_capacity(m * m);
         for a in 0..m {
+            for b in 0..a {
+                out.push(out[b * m + a]);
+            }
+            let (ja, pa) = (joint[a], pivots[a]);
             for b in a..m {
-                let k = (a % nj).max(b % nj).min(nb);
+                let k = ja.max(joint[b]).min(nb);
                 let s0 = pose.suffix_mass[k];
-                if s0 == 0.0 {
-                    continue;
-                }
-                let g = pose.suffix_centre[k];
-                let (pa, pb) = (self.pivot(pose, a), self.pivot(pose, b));
-                let v = s0 * dot(sub(g, pa), sub(g, pb)) + pose.suffix_polar[k];
-                out[a * m + b] = v;
-                out[b * m + a] = v;
+                let v = if s0 == 0.0 {
+                    0.0
+                } else {
+                    let g = pose.suffix_centre[k];
+                    s0 * dot(sub(g, pa), sub(g, pivots[b])) + pose.suffix_polar[k]
+                };
+                out.push(v);
             }
         }
         out

@@ -2,7 +2,10 @@
 //! constrained impact model, the lock of a chattering joint and of joints opened slower than the
 //! step resolves (docs/arches.md 2b).
 
-use super::{project_positions, project_rates, side, LoopError, LoopEventKind, LoopState, Runner};
+use super::{
+    project_positions_posed, project_rates, side, LoopError, LoopEventKind, LoopState, Runner,
+};
+use crate::chain::ChainPose;
 use crate::model::configuration::Status;
 use crate::model::constrained::impact_model_constrained;
 
@@ -78,11 +81,14 @@ impl Runner<'_> {
         }
         // The closing angles set to zero leave the state off the closure by their
         // located zeros' error: back onto it with the rest.
+        // One pose of the angles at the impact serves the projection (which leaves the pose of
+        // its result), the kinetic energies, the model's matrices and the slow joints' rates.
+        let mut pose = self.chain.pose(&s.phi);
         let residual = if opts.project {
             let rest: Vec<usize> = open.iter().copied().filter(|&d| !closing[d % n]).collect();
-            project_positions(self.chain, &rest, &mut s.phi, self.reach, 3)
+            project_positions_posed(self.chain, &rest, &mut s.phi, self.reach, 3, &mut pose)
         } else {
-            self.residual(&s.phi)
+            self.residual_posed(&pose)
         };
         self.out.max_closure_residual = self.out.max_closure_residual.max(residual);
         if s.time == self.last_event_time {
@@ -93,14 +99,13 @@ impl Runner<'_> {
         } else {
             (self.last_event_time, self.stalled) = (s.time, 0);
         }
-        let before = self.kinetic(s);
+        let before = self.kinetic_posed(&pose, &s.rates);
         self.max_kinetic = self.max_kinetic.max(before);
         let (statuses_before, rates_before) = (s.statuses.clone(), s.rates.clone());
         let closing_rate = (0..n)
             .filter(|&k| closing[k])
             .map(|k| (s.rates[k] + s.rates[n + k]).abs())
             .fold(0.0, f64::max);
-        let pose = self.chain.pose(&s.phi);
         let mass = self.chain.mass_matrix(&pose);
         let g = self.chain.closure_matrix(&pose);
         let report = impact_model_constrained(
@@ -128,7 +133,7 @@ impl Runner<'_> {
             } else if !project_rates(self.chain, &pose, &open, &mut s.rates) {
                 return Err(LoopError::Singular(s.time));
             }
-            kinetic_after = self.kinetic(s);
+            kinetic_after = self.kinetic_posed(&pose, &s.rates);
             self.event(
                 s,
                 LoopEventKind::Locked {
@@ -138,8 +143,8 @@ impl Runner<'_> {
                 },
             );
         } else {
-            if self.keep_slow_closed(s)? {
-                kinetic_after = self.kinetic(s);
+            if self.keep_slow_closed(s, &pose)? {
+                kinetic_after = self.kinetic_posed(&pose, &s.rates);
             }
             self.event(
                 s,
@@ -161,7 +166,12 @@ impl Runner<'_> {
     /// closure (kinetic energy not above the model's); a DOF at zero angle that the projection
     /// turns inadmissible (closing) is kept closed too, until none is. Fewer than four open
     /// joints: at rest (SPEC §9). Returns whether anything changed.
-    pub(super) fn keep_slow_closed(&mut self, s: &mut LoopState) -> Result<bool, LoopError> {
+    /// `pose` is the pose of `s.phi` (which this does not change).
+    pub(super) fn keep_slow_closed(
+        &mut self,
+        s: &mut LoopState,
+        pose: &ChainPose,
+    ) -> Result<bool, LoopError> {
         let n = self.chain.n_joints();
         let mut changed = false;
         let flight = self.options.min_flight;
@@ -198,8 +208,7 @@ impl Runner<'_> {
                 s.rates.iter_mut().for_each(|r| *r = 0.0);
                 return Ok(true);
             }
-            let pose = self.chain.pose(&s.phi);
-            if !project_rates(self.chain, &pose, &open, &mut s.rates) {
+            if !project_rates(self.chain, pose, &open, &mut s.rates) {
                 return Err(LoopError::Singular(s.time));
             }
         }

@@ -2,6 +2,7 @@
 //! closed outright a hair from closure; the point of no return of its mechanism.
 
 use super::{side, LoopEventKind, LoopState, Runner};
+use crate::chain::ChainPose;
 use crate::model::configuration::Status;
 
 /// A loop settled with no point displaced farther than this from the closed geometry (m) is
@@ -36,7 +37,11 @@ impl Runner<'_> {
 
     /// Potential energy of the bodies' weight (J) in the pose of `phi`.
     pub(super) fn potential(&self, phi: &[f64]) -> f64 {
-        let pose = self.chain.pose(phi);
+        self.potential_posed(&self.chain.pose(phi))
+    }
+
+    /// [`Runner::potential`] in a pose already built.
+    fn potential_posed(&self, pose: &ChainPose) -> f64 {
         let bodies = self.chain.bodies();
         self.options.gravity
             * bodies
@@ -50,7 +55,13 @@ impl Runner<'_> {
     /// (over the barrier, any mechanism); for a one-DOF mechanism (four open joints) already
     /// past the maximum of `V` along it (gravity's power positive while the hinges open); or a
     /// hinge angle beyond the safeguard.
-    pub(super) fn collapsed(&self, s: &LoopState, open: &[usize], residual: f64) -> bool {
+    pub(super) fn collapsed(
+        &self,
+        s: &LoopState,
+        open: &[usize],
+        residual: f64,
+        pose: &ChainPose,
+    ) -> bool {
         let n = self.chain.n_joints();
         if s.phi.iter().any(|p| p.abs() > self.options.collapse_angle) {
             return true;
@@ -58,7 +69,7 @@ impl Runner<'_> {
         // A pose off the closure by `residual` misplaces the weight by about that much.
         let slack =
             self.potential_tolerance + self.options.gravity * self.chain.total_mass() * residual;
-        let potential = self.potential(&s.phi);
+        let potential = self.potential_posed(pose);
         if potential < self.closed_potential - slack {
             return true;
         }
@@ -68,8 +79,7 @@ impl Runner<'_> {
         if open.len() != 4 || potential <= self.closed_potential + slack {
             return false;
         }
-        let pose = self.chain.pose(&s.phi);
-        let gravity = self.chain.load_vector(&pose, 0.0, self.options.gravity);
+        let gravity = self.chain.load_vector(pose, 0.0, self.options.gravity);
         let power: f64 = open.iter().map(|&d| gravity[d] * s.rates[d]).sum();
         let opening: f64 = open.iter().map(|&d| side(d, n) * s.rates[d]).sum();
         power > 0.0 && opening > 0.0

@@ -19,6 +19,51 @@ pub struct LoopEquations<'a> {
     velocity: Vec<f64>,
     scratch: Vec<[f64; 2]>,
     screen: Vec<f64>,
+    /// The open DOFs' joints and pivots in the pose (`Chain::dof_pivot`).
+    pivots: Vec<(usize, [f64; 2])>,
+    /// The last evaluation at the start of a step or of a screen (its open DOFs, `a_g`, `x`,
+    /// `v` and accelerations): the next step's first stage, and a located closing's first
+    /// stage, evaluate the same arguments again (the function is pure: the same bits).
+    memo: Memo,
+    /// The RK4 stages' vectors.
+    stages: Vec<Vec<f64>>,
+}
+
+#[derive(Clone, Debug, Default)]
+struct Memo {
+    valid: bool,
+    open: Vec<usize>,
+    ag: u64,
+    x: Vec<f64>,
+    v: Vec<f64>,
+    out: Vec<f64>,
+}
+
+fn same_bits(a: &[f64], b: &[f64]) -> bool {
+    a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits())
+}
+
+impl Memo {
+    fn matches(&self, open: &[usize], ag: f64, x: &[f64], v: &[f64]) -> bool {
+        self.valid
+            && self.open == open
+            && self.ag == ag.to_bits()
+            && same_bits(&self.x, x)
+            && same_bits(&self.v, v)
+    }
+
+    fn store(&mut self, open: &[usize], ag: f64, x: &[f64], v: &[f64], out: &[f64]) {
+        self.valid = true;
+        self.open.clear();
+        self.open.extend_from_slice(open);
+        self.ag = ag.to_bits();
+        self.x.clear();
+        self.x.extend_from_slice(x);
+        self.v.clear();
+        self.v.extend_from_slice(v);
+        self.out.clear();
+        self.out.extend_from_slice(out);
+    }
 }
 
 impl<'a> LoopEquations<'a> {
@@ -36,6 +81,9 @@ impl<'a> LoopEquations<'a> {
             velocity: Vec::new(),
             scratch: Vec::new(),
             screen: Vec::new(),
+            pivots: Vec::new(),
+            memo: Memo::default(),
+            stages: Vec::new(),
         }
     }
 
@@ -82,14 +130,17 @@ impl<'a> LoopEquations<'a> {
         self.kkt.resize(k * k, 0.0);
         self.rhs.clear();
         self.rhs.resize(k, 0.0);
-        let (a, b) = (&mut self.kkt, &mut self.rhs);
+        self.pivots.clear();
+        self.pivots
+            .extend(open.iter().map(|&d| self.chain.dof_pivot(pose, d)));
+        let (a, b, piv) = (&mut self.kkt, &mut self.rhs, &self.pivots);
         for (i, &di) in open.iter().enumerate() {
-            for (j, &dj) in open.iter().enumerate().skip(i) {
-                let mij = self.chain.mass_entry(pose, di, dj);
+            for j in i..nf {
+                let mij = self.chain.mass_entry_of(pose, piv[i], piv[j]);
                 a[i * k + j] = mij;
                 a[j * k + i] = mij;
             }
-            let p = self.chain.pivot(pose, di);
+            let p = piv[i].1;
             for (r, g) in [1.0, p[1], -p[0]].into_iter().enumerate() {
                 a[i * k + nf + r] = g;
                 a[(nf + r) * k + i] = g;
@@ -131,17 +182,23 @@ impl<'a> LoopEquations<'a> {
         let mut a = std::mem::take(&mut self.screen);
         a.clear();
         a.resize(nf, 0.0);
-        let holds = self.accelerations(open, ag, x, v, &mut a) && {
+        let ok = self.accelerations(open, ag, x, v, &mut a);
+        if ok {
+            self.memo.store(open, ag, x, v, &a);
+        }
+        let holds = ok && {
             let n = statuses.len();
             let mu = [self.rhs[nf], self.rhs[nf + 1], self.rhs[nf + 2]];
             let pose = &self.pose;
             let (mut worst, mut scale) = (f64::INFINITY, 0.0_f64);
             for k in (0..n).filter(|&k| !statuses[k].is_open()) {
                 for (d, sign) in [(k, -1.0), (n + k, 1.0)] {
-                    let ma: f64 = open
+                    let pd = self.chain.dof_pivot(pose, d);
+                    let ma: f64 = self
+                        .pivots
                         .iter()
                         .zip(&a)
-                        .map(|(&j, &aj)| self.chain.mass_entry(pose, d, j) * aj)
+                        .map(|(&pj, &aj)| self.chain.mass_entry_of(pose, pd, pj) * aj)
                         .sum();
                     let load = self.chain.load_entry(pose, d, ag, self.gravity) + self.velocity[d];
                     let p = self.chain.pivot(pose, d);
@@ -154,6 +211,26 @@ impl<'a> LoopEquations<'a> {
         };
         self.screen = a;
         holds
+    }
+
+    /// [`LoopEquations::accelerations`] through the memo of the last first stage.
+    fn first_stage(
+        &mut self,
+        open: &[usize],
+        ag: f64,
+        x: &[f64],
+        v: &[f64],
+        out: &mut [f64],
+    ) -> bool {
+        if self.memo.matches(open, ag, x, v) {
+            out.copy_from_slice(&self.memo.out);
+            return true;
+        }
+        let ok = self.accelerations(open, ag, x, v, out);
+        if ok {
+            self.memo.store(open, ag, x, v, out);
+        }
+        ok
     }
 
     /// One classical RK4 step of length `dt` from `(x, v)` at time `t` under `ag(t)`: the state
@@ -172,64 +249,79 @@ impl<'a> LoopEquations<'a> {
         v1: &mut [f64],
     ) -> bool {
         let n = open.len();
-        let axpy = |a: &[f64], b: &[f64], h: f64| -> Vec<f64> {
-            a.iter().zip(b).map(|(a, b)| a + h * b).collect()
+        let axpy = |out: &mut Vec<f64>, a: &[f64], b: &[f64], h: f64| {
+            out.clear();
+            out.extend(a.iter().zip(b).map(|(a, b)| a + h * b));
         };
-        let mut k1a = vec![0.0; n];
-        let mut k2a = vec![0.0; n];
-        let mut k3a = vec![0.0; n];
-        let mut k4a = vec![0.0; n];
-        let k1x = v.to_vec();
-        let ok1 = self.accelerations(open, ag(t), x, v, &mut k1a);
-        let k2x = axpy(v, &k1a, dt / 2.0);
-        let ok2 = self.accelerations(
-            open,
-            ag(t + dt / 2.0),
-            &axpy(x, &k1x, dt / 2.0),
-            &k2x,
-            &mut k2a,
-        );
-        let k3x = axpy(v, &k2a, dt / 2.0);
-        let ok3 = self.accelerations(
-            open,
-            ag(t + dt / 2.0),
-            &axpy(x, &k2x, dt / 2.0),
-            &k3x,
-            &mut k3a,
-        );
-        let k4x = axpy(v, &k3a, dt);
-        let ok4 = self.accelerations(open, ag(t + dt), &axpy(x, &k3x, dt), &k4x, &mut k4a);
+        let mut st = std::mem::take(&mut self.stages);
+        st.resize(9, Vec::new());
+        let [k1a, k2a, k3a, k4a, k2x, k3x, k4x, xs, ..] = &mut st[..] else {
+            unreachable!()
+        };
+        for k in [&mut *k1a, &mut *k2a, &mut *k3a, &mut *k4a] {
+            k.clear();
+            k.resize(n, 0.0);
+        }
+        let k1x = v;
+        let ok1 = self.first_stage(open, ag(t), x, v, k1a);
+        axpy(k2x, v, k1a, dt / 2.0);
+        axpy(xs, x, k1x, dt / 2.0);
+        let ok2 = self.accelerations(open, ag(t + dt / 2.0), xs, k2x, k2a);
+        axpy(k3x, v, k2a, dt / 2.0);
+        axpy(xs, x, k2x, dt / 2.0);
+        let ok3 = self.accelerations(open, ag(t + dt / 2.0), xs, k3x, k3a);
+        axpy(k4x, v, k3a, dt);
+        axpy(xs, x, k3x, dt);
+        let ok4 = self.accelerations(open, ag(t + dt), xs, k4x, k4a);
         for i in 0..n {
             x1[i] = x[i] + dt / 6.0 * (k1x[i] + 2.0 * k2x[i] + 2.0 * k3x[i] + k4x[i]);
             v1[i] = v[i] + dt / 6.0 * (k1a[i] + 2.0 * k2a[i] + 2.0 * k3a[i] + k4a[i]);
         }
+        self.stages = st;
         ok1 && ok2 && ok3 && ok4
     }
 }
 
 /// Solves the dense `a x = b` in place (`b` becomes `x`) by Gaussian elimination with partial
 /// pivoting; `false` if a pivot is zero or the result is not finite.
+///
+/// The pivot is the last row of largest `|a_ic|` (`total_cmp`, as `Iterator::max_by`). Only the
+/// entries right of the pivot column are swapped and updated: those left of it and below the
+/// diagonal are never read again (the multiplier is taken before), so the factors and the
+/// solution are those of the full update to the bit.
 pub(super) fn solve_in_place(a: &mut [f64], b: &mut [f64]) -> bool {
     let n = b.len();
+    debug_assert_eq!(a.len(), n * n);
     for col in 0..n {
-        let Some(piv) =
-            (col..n).max_by(|&i, &j| a[i * n + col].abs().total_cmp(&a[j * n + col].abs()))
-        else {
-            return false;
-        };
+        let mut piv = col;
+        let mut best = a[col * n + col].abs();
+        for i in col + 1..n {
+            let v = a[i * n + col].abs();
+            if v.total_cmp(&best) != std::cmp::Ordering::Less {
+                piv = i;
+                best = v;
+            }
+        }
         if a[piv * n + col] == 0.0 {
             return false;
         }
-        for k in 0..n {
-            a.swap(col * n + k, piv * n + k);
+        if piv != col {
+            let (top, bottom) = a.split_at_mut(piv * n);
+            top[col * n + col..(col + 1) * n].swap_with_slice(&mut bottom[col..n]);
+            b.swap(col, piv);
         }
-        b.swap(col, piv);
-        for r in col + 1..n {
-            let f = a[r * n + col] / a[col * n + col];
-            for k in col..n {
-                a[r * n + k] -= f * a[col * n + k];
+        let (top, bottom) = a.split_at_mut((col + 1) * n);
+        let len = n - col - 1;
+        let d = top[col * n + col];
+        let prow = &top[col * n + col + 1..][..len];
+        let bc = b[col];
+        for (row, br) in bottom.chunks_exact_mut(n).zip(&mut b[col + 1..]) {
+            let f = row[col] / d;
+            let tail = &mut row[col + 1..][..len];
+            for j in 0..len {
+                tail[j] -= f * prow[j];
             }
-            b[r] -= f * b[col];
+            *br -= f * bc;
         }
     }
     for r in (0..n).rev() {

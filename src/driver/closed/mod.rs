@@ -84,10 +84,11 @@ mod state;
 mod tests;
 
 pub use equations::LoopEquations;
+use projection::project_positions_posed;
 pub use projection::{project_positions, project_rates};
 pub use state::{LoopError, LoopEvent, LoopEventKind, LoopOptions, LoopOutcome, LoopState, Screen};
 
-use crate::chain::Chain;
+use crate::chain::{Chain, ChainPose};
 use crate::ground::GroundMotion;
 use crate::model::configuration::Status;
 use closing::Located;
@@ -218,17 +219,28 @@ impl<'a> Runner<'a> {
     }
 
     fn kinetic(&self, s: &LoopState) -> f64 {
-        let pose = self.chain.pose(&s.phi);
+        self.kinetic_posed(&self.chain.pose(&s.phi), &s.rates)
+    }
+
+    /// [`Runner::kinetic`] with the pose of the state's angles already built.
+    fn kinetic_posed(&self, pose: &ChainPose, rates: &[f64]) -> f64 {
+        let s_rates = rates;
         let m = self.chain.n_dofs();
         // Over the moving DOFs only (the others' zero rates add nothing to the sums).
-        let moving: Vec<usize> = (0..m).filter(|&a| s.rates[a] != 0.0).collect();
+        let moving: Vec<usize> = (0..m).filter(|&a| s_rates[a] != 0.0).collect();
+        let piv: Vec<(usize, [f64; 2])> = moving
+            .iter()
+            .map(|&a| self.chain.dof_pivot(pose, a))
+            .collect();
         0.5 * moving
             .iter()
-            .map(|&a| {
-                s.rates[a]
+            .zip(&piv)
+            .map(|(&a, &pa)| {
+                s_rates[a]
                     * moving
                         .iter()
-                        .map(|&b| self.chain.mass_entry(&pose, a, b) * s.rates[b])
+                        .zip(&piv)
+                        .map(|(&b, &pb)| self.chain.mass_entry_of(pose, pa, pb) * s_rates[b])
                         .sum::<f64>()
             })
             .sum::<f64>()
@@ -245,8 +257,8 @@ impl<'a> Runner<'a> {
         }
     }
 
-    fn residual(&self, phi: &[f64]) -> f64 {
-        let r = self.chain.closure_residual(&self.chain.pose(phi));
+    fn residual_posed(&self, pose: &ChainPose) -> f64 {
+        let r = self.chain.closure_residual(pose);
         r[1].hypot(r[2]).max(r[0].abs() * self.reach)
     }
 
@@ -372,11 +384,15 @@ impl<'a> Runner<'a> {
                 s.rates[open[i]] = v1[i];
             }
             steps += 1;
-            let drift = self.residual(&s.phi);
+            // One pose of the angles serves the drift, the projection (which leaves the pose
+            // of its result), the kinetic energy and the collapse test.
+            let mut pose = self.chain.pose(&s.phi);
+            let drift = self.residual_posed(&pose);
             self.out.max_step_drift = self.out.max_step_drift.max(drift);
             let residual = if opts.project {
-                let r = project_positions(self.chain, &open, &mut s.phi, self.reach, 3);
-                let pose = self.chain.pose(&s.phi);
+                let r = project_positions_posed(
+                    self.chain, &open, &mut s.phi, self.reach, 3, &mut pose,
+                );
                 if !project_rates(self.chain, &pose, &open, &mut s.rates) {
                     return Err(LoopError::Singular(s.time));
                 }
@@ -392,8 +408,8 @@ impl<'a> Runner<'a> {
             if opts.record_every > 0 && steps % opts.record_every == 0 {
                 self.out.history.push((s.time, s.phi.clone()));
             }
-            self.max_kinetic = self.max_kinetic.max(self.kinetic(&s));
-            if self.collapsed(&s, &open, residual) {
+            self.max_kinetic = self.max_kinetic.max(self.kinetic_posed(&pose, &s.rates));
+            if self.collapsed(&s, &open, residual, &pose) {
                 self.out.collapsed = true;
                 self.event(&s, LoopEventKind::Collapsed);
                 break;

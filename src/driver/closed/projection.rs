@@ -16,9 +16,10 @@ use crate::chain::{Chain, ChainPose};
 fn sub_mass(chain: &Chain, pose: &ChainPose, open: &[usize]) -> Vec<f64> {
     let nf = open.len();
     let mut out = vec![0.0; nf * nf];
-    for (i, &di) in open.iter().enumerate() {
-        for (j, &dj) in open.iter().enumerate().skip(i) {
-            let v = chain.mass_entry(pose, di, dj);
+    let piv: Vec<(usize, [f64; 2])> = open.iter().map(|&d| chain.dof_pivot(pose, d)).collect();
+    for i in 0..nf {
+        for j in i..nf {
+            let v = chain.mass_entry_of(pose, piv[i], piv[j]);
             out[i * nf + j] = v;
             out[j * nf + i] = v;
         }
@@ -58,13 +59,13 @@ pub fn project_rates(chain: &Chain, pose: &ChainPose, open: &[usize], rates: &mu
     let m = chain.n_dofs();
     let g = chain.closure_matrix(pose);
     // `M_F· v` over the moving DOFs only (the zero rates add nothing to the sums).
-    let moving: Vec<usize> = (0..m).filter(|&e| rates[e] != 0.0).collect();
+    let moving: Vec<bool> = rates.iter().map(|&r| r != 0.0).collect();
     let mut b: Vec<f64> = open
         .iter()
         .map(|&d| {
             (0..m)
                 .map(|e| {
-                    if moving.binary_search(&e).is_ok() {
+                    if moving[e] {
                         chain.mass_entry(pose, d, e) * rates[e]
                     } else {
                         0.0
@@ -99,11 +100,24 @@ pub fn project_positions(
     reach: f64,
     iterations: usize,
 ) -> f64 {
+    let mut pose = chain.pose(phi);
+    project_positions_posed(chain, open, phi, reach, iterations, &mut pose)
+}
+
+/// [`project_positions`] with `pose` the pose of `phi` on entry; on return the pose of the
+/// final `phi` (the driver's next uses of it need not build it again).
+pub(super) fn project_positions_posed(
+    chain: &Chain,
+    open: &[usize],
+    phi: &mut [f64],
+    reach: f64,
+    iterations: usize,
+    pose: &mut ChainPose,
+) -> f64 {
     let m = chain.n_dofs();
     let size = |r: [f64; 3]| r[1].hypot(r[2]).max(r[0].abs() * reach);
     let depth = |d: usize, x: f64| if d < m / 2 { -x } else { x };
-    let mut pose = chain.pose(phi);
-    let mut r = chain.closure_residual(&pose);
+    let mut r = chain.closure_residual(pose);
     for _ in 0..iterations {
         if size(r) == 0.0 {
             break;
@@ -112,7 +126,7 @@ pub fn project_positions(
         let moved = pose.support.apply(o);
         let mut jac = vec![0.0; 3 * m];
         for &a in open {
-            let p = chain.pivot(&pose, a);
+            let p = chain.pivot(pose, a);
             jac[a] = 1.0;
             jac[m + a] = p[1] - moved[1];
             jac[2 * m + a] = moved[0] - p[0];
@@ -122,7 +136,7 @@ pub fn project_positions(
             let mut dx = vec![0.0; free.len()];
             if free.len() < 3
                 || !kkt(
-                    &sub_mass(chain, &pose, &free),
+                    &sub_mass(chain, pose, &free),
                     &jac,
                     m,
                     &free,
@@ -155,7 +169,7 @@ pub fn project_positions(
             break;
         }
         phi.copy_from_slice(&trial);
-        (pose, r) = (trial_pose, trial_r);
+        (*pose, r) = (trial_pose, trial_r);
     }
     size(r)
 }

@@ -127,14 +127,7 @@ impl PivotedQr {
         for s in 0..self.rank {
             let v = &self.vecs[s * k..s * k + (k - s)];
             let beta = self.beta[s];
-            w.clear();
-            w.extend((0..k).map(|i| {
-                a[i * k + s..(i + 1) * k]
-                    .iter()
-                    .zip(v)
-                    .map(|(x, y)| x * y)
-                    .sum::<f64>()
-            }));
+            row_dots(a, k, s, v, &mut w);
             let gamma: f64 = v.iter().zip(&w[s..]).map(|(x, y)| x * y).sum();
             let half = 0.5 * beta * beta * gamma;
             for i in 0..k {
@@ -153,9 +146,14 @@ impl PivotedQr {
                         *x -= ui * vj;
                     }
                 } else {
-                    for (j, x) in row.iter_mut().enumerate() {
-                        let vj = if j >= s { v[j - s] } else { 0.0 };
-                        *x -= vi * w[j] + ui * vj;
+                    // Columns before s have v_j = 0 (the product `ui * 0.0` kept: the same
+                    // operations as one loop over every column, in two branch-free loops).
+                    let (head, tail) = row.split_at_mut(s);
+                    for (x, wj) in head.iter_mut().zip(&w[..s]) {
+                        *x -= vi * wj + ui * 0.0;
+                    }
+                    for ((x, wj), vj) in tail.iter_mut().zip(&w[s..]).zip(v) {
+                        *x -= vi * wj + ui * vj;
                     }
                 }
             }
@@ -201,6 +199,40 @@ impl PivotedQr {
         for i in 0..rank {
             mu[self.perm[i]] = nu[i];
         }
+    }
+}
+
+/// `w_i = Σ_j a[i][s + j] v_j` for every row `i` of the row-major `k × k` matrix `a`: each sum
+/// in the order of `j` from `-0.0`, as `iter().sum()` (the same bits), four rows at a time
+/// (independent chains, `v_j` loaded once).
+fn row_dots(a: &[f64], k: usize, s: usize, v: &[f64], w: &mut Vec<f64>) {
+    let len = k - s;
+    let v = &v[..len];
+    w.clear();
+    w.resize(k, 0.0);
+    let mut i = 0;
+    while i + 4 <= k {
+        let r0 = &a[i * k + s..][..len];
+        let r1 = &a[(i + 1) * k + s..][..len];
+        let r2 = &a[(i + 2) * k + s..][..len];
+        let r3 = &a[(i + 3) * k + s..][..len];
+        let mut acc = [-0.0_f64; 4];
+        for j in 0..len {
+            let vj = v[j];
+            acc[0] += r0[j] * vj;
+            acc[1] += r1[j] * vj;
+            acc[2] += r2[j] * vj;
+            acc[3] += r3[j] * vj;
+        }
+        w[i..i + 4].copy_from_slice(&acc);
+        i += 4;
+    }
+    for (i, wi) in w.iter_mut().enumerate().skip(i) {
+        *wi = a[i * k + s..][..len]
+            .iter()
+            .zip(v)
+            .map(|(x, y)| x * y)
+            .sum::<f64>();
     }
 }
 

@@ -110,13 +110,21 @@ impl ConstrainedProblem {
         let mut b = vec![0.0; p];
         let mut cg = vec![0.0; nc * p];
         for i in 0..p {
+            let ti = gens[i].terms();
             for j in i..p {
-                let mut s = 0.0;
-                for &(di, ci) in gens[i].terms() {
-                    for &(dj, cj) in gens[j].terms() {
-                        s += ci * cj * mass[di * m + dj];
+                let tj = gens[j].terms();
+                let s = if let ([(di, ci)], [(dj, cj)]) = (ti, tj) {
+                    // One term each (unit generators): the loop's single `0.0 + c_i c_j M`.
+                    0.0 + ci * cj * mass[di * m + dj]
+                } else {
+                    let mut s = 0.0;
+                    for &(di, ci) in ti {
+                        for &(dj, cj) in tj {
+                            s += ci * cj * mass[di * m + dj];
+                        }
                     }
-                }
+                    s
+                };
                 a[i * p + j] = s;
                 a[j * p + i] = s;
             }
@@ -215,8 +223,10 @@ impl ConstrainedProblem {
         // reduced matrix is a principal part of it.
         let all: Vec<usize> = (0..p).collect();
         let rows_all: Vec<usize> = (0..problem.nc).collect();
+        // Only the factor's success is needed here (the face solve's first half, the same
+        // operations: the same verdict to the bit).
         let mut ws = FaceWork::default();
-        problem.solve_face(&all, &rows_all, &mut ws)?;
+        problem.factor_face(&all, &rows_all, &mut ws)?;
         Ok(problem)
     }
 
@@ -316,16 +326,20 @@ impl ConstrainedProblem {
         residual
     }
 
-    /// Solves the face `set` with the constraint rows `rows`: `ŷ_S` into `ws.y`, `μ` into
-    /// `ws.mu`. `None` when the face cannot satisfy the constraints.
-    pub fn solve_face(
+    /// The first half of a face solve: the QR factors of the face's constraint columns, the
+    /// particular solution `u` in `ws.y[..rank]`, the reduced matrix `QᵀÂ_SS Q` in `ws.h` and
+    /// the Cholesky factor of its null-space block in `ws.factor`. `Ok(None)` when the face
+    /// cannot satisfy the constraints; the not-positive-definite error when the factor fails.
+    fn factor_face(
         &self,
         set: &[usize],
         rows: &[usize],
         ws: &mut FaceWork,
-    ) -> Result<Option<FaceInfo>, RockingError> {
-        let (k, c, p) = (set.len(), rows.len(), self.p());
+    ) -> Result<Option<usize>, RockingError> {
+        let (k, p) = (set.len(), self.p());
+        let c = rows.len();
         ws.kt.clear();
+        ws.kt.reserve(k * c);
         for &s in set {
             ws.kt.extend(rows.iter().map(|&row| self.c[row * p + s]));
         }
@@ -342,31 +356,49 @@ impl ConstrainedProblem {
         if residual > CONSISTENCY * (1.0 + rscale) {
             return Ok(None);
         }
-        // Reduced problem in u = Qᵀ y: H = Qᵀ Â_SS Q, g = Qᵀ b̂_S.
+        // Reduced problem in u = Qᵀ y: H = Qᵀ Â_SS Q.
         ws.h.clear();
+        ws.h.reserve(k * k);
         for &r in set {
             ws.h.extend(set.iter().map(|&s| self.cone.a[r * p + s]));
         }
         ws.qr.congruence(&mut ws.h);
-        let mut g: Vec<f64> = set.iter().map(|&s| self.cone.b[s]).collect();
-        ws.qr.apply_qt(&mut g);
         let free = k - rank;
         ws.factor.clear();
+        ws.factor.reserve(free * free);
         for i in rank..k {
             ws.factor
                 .extend_from_slice(&ws.h[i * k + rank..(i + 1) * k]);
         }
+        if free > 0 && !cholesky::factor(&mut ws.factor, free) {
+            return Err(not_pd(
+                "the mass matrix of a configuration is not positive definite on the null \
+                 space of the constraints",
+            ));
+        }
+        Ok(Some(rank))
+    }
+
+    /// Solves the face `set` with the constraint rows `rows`: `ŷ_S` into `ws.y`, `μ` into
+    /// `ws.mu`. `None` when the face cannot satisfy the constraints.
+    pub fn solve_face(
+        &self,
+        set: &[usize],
+        rows: &[usize],
+        ws: &mut FaceWork,
+    ) -> Result<Option<FaceInfo>, RockingError> {
+        let Some(rank) = self.factor_face(set, rows, ws)? else {
+            return Ok(None);
+        };
+        let (k, c, p) = (set.len(), rows.len(), self.p());
+        let free = k - rank;
+        let mut g: Vec<f64> = set.iter().map(|&s| self.cone.b[s]).collect();
+        ws.qr.apply_qt(&mut g);
         let mut z: Vec<f64> = (rank..k)
             .map(|i| g[i] - (0..rank).map(|j| ws.h[i * k + j] * ws.y[j]).sum::<f64>())
             .collect();
         let mut condition = 1.0;
         if free > 0 {
-            if !cholesky::factor(&mut ws.factor, free) {
-                return Err(not_pd(
-                    "the mass matrix of a configuration is not positive definite on the null \
-                     space of the constraints",
-                ));
-            }
             cholesky::solve(&ws.factor, free, &mut z);
             condition = cholesky::condition_estimate(&ws.factor, free);
         }
