@@ -270,7 +270,7 @@ fn time_history(c: &mut Criterion) {
     let mut group = c.benchmark_group("arch time history, 30 s at dt = 1 ms");
     group.sample_size(10);
     group.measurement_time(Duration::from_secs(10));
-    // The opening model's screen (docs/arches.md §4) on, as by default, and off.
+    // The opening model's screen (docs/arch-performance.md) on, as by default, and off.
     for (name, pga, screen) in [
         ("PGA 0.1 g", Some(0.1 * GRAVITY), Screen::On),
         ("as recorded (0.3 g)", None, Screen::On),

@@ -1,11 +1,11 @@
 //! The 20-voussoir arch (R = 5 m, t = 0.75 m) under the bundled record through the loop driver
 //! (`rocking::driver::simulate_loop`, dt = 1 ms): events by kind, wall time, closure residual,
-//! peak angle — the figures of docs/arches.md §4 in one run.
+//! peak angle — the figures of docs/arch-performance.md in one run.
 //!
 //! `cargo run --release --example arch_record -- [duration_s] [pga_g|recorded] [dt_s]`
 //! (defaults: 30, recorded, 0.001). Environment: `FLIGHT=k` sets `LoopOptions::min_flight`,
 //! `LOCK_LOSS`, `LOCK_RATE` the lock's options, `EVENTS=1` prints every event;
-//! `ROCKING_LOOP_SCREEN=off|on|verify` the opening model's screen (docs/arches.md §4).
+//! `ROCKING_LOOP_SCREEN=off|on|verify` the opening model's screen (docs/arch-performance.md).
 use rocking::chain::arch::VoussoirArch;
 use rocking::driver::closed::{LoopEventKind, Screen};
 use rocking::driver::{simulate_loop, LoopOptions, LoopState};

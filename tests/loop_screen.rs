@@ -1,4 +1,4 @@
-//! The loop driver's screen of the opening model (`LoopOptions::screen`, docs/arches.md §4) is
+//! The loop driver's screen of the opening model (`LoopOptions::screen`, docs/arch-performance.md) is
 //! exact: with it off, on, or verifying (the model asked always, a panic on any difference) the
 //! runs are the same to the bit — events, history, end state, peaks, residuals — on arches and a
 //! capped colonnade under pulses and a record; and it answers most of the questions.

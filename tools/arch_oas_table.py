@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Tables of docs/arches.md 3b from `rocking arch oas --t1 T1` JSON files (argv) and their
+"""Tables of docs/arch-spectra.md from `rocking arch oas --t1 T1` JSON files (argv) and their
 `/usr/bin/time -f "%e s wall, %U user, ..."` lines (the same name with .err): the boundary of one
 record (`boundary FILE`), one row per record of the t1 check (`rows FILES`), and the totals over
 the records (`summary FILES`). A collapse whose run peaked below 0.01 rad is flagged as suspect

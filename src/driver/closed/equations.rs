@@ -157,7 +157,7 @@ impl<'a> LoopEquations<'a> {
         true
     }
 
-    /// The screen of the opening model (`LoopOptions::screen`, docs/arches.md §4): whether the
+    /// The screen of the opening model (`LoopOptions::screen`, docs/arch-performance.md): whether the
     /// configuration `statuses` (open DOFs `open`, reduced angles `x` and rates `v`) under the
     /// ground acceleration `ag` is the opening model's own answer. With `a` and `μ` the
     /// mechanism's constrained accelerations and closure multipliers (the KKT system of

@@ -54,7 +54,7 @@ pub struct LoopOptions {
     pub screen: Screen,
 }
 
-/// The opening model's screen after a moving step (docs/arches.md §4). The model is a
+/// The opening model's screen after a moving step (docs/arch-performance.md). The model is a
 /// projection in the kinetic metric (Gauss's principle over the cone of admissible
 /// accelerations with the closure, a convex problem whose relaxation has a unique optimum): when
 /// the current mechanism's own constrained accelerations satisfy its optimality conditions —

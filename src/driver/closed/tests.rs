@@ -9,7 +9,7 @@ use crate::ground::FnMotion;
 /// step start, whose depths' cubic never rises over the step (RK4's mean load is inside what
 /// the arch resists), so it closes again at once, at rest, in the state the step started from.
 /// This used to repeat at one instant until `LoopError::Stalled` (17 runs of the far-field arch
-/// OAS, docs/arches.md 3b); the loop rests through such a step instead: no event, no motion.
+/// OAS, docs/arch-spectra.md); the loop rests through such a step instead: no event, no motion.
 #[test]
 fn a_step_whose_opening_closes_at_once_is_rested_through() {
     let chain = VoussoirArch::semicircular(5.0, 0.75, 8).chain().unwrap();
