@@ -43,6 +43,15 @@ pub struct JointContacts {
     pub mu: f64,
 }
 
+/// What the solvers read of a joint's [`JointContacts`] (its rows go into the Delassus blocks):
+/// kept apart so that setting a problem up does not copy the rows a second time.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(super) struct JointLaw {
+    pub(super) active: [bool; 2],
+    pub(super) bilateral: [bool; 2],
+    pub(super) mu: f64,
+}
+
 /// Slip status of a joint.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum Slip {
@@ -123,7 +132,7 @@ pub struct ContactProblem {
     pub(super) wo: Vec<B3>,
     /// Free relative velocities.
     pub(super) b: Vec<[f64; 3]>,
-    pub(super) joints: Vec<JointContacts>,
+    pub(super) joints: Vec<JointLaw>,
     pub(super) red: Vec<Reduction>,
     pub(super) cp: Vec<B3>,
     pub(super) dinv: Vec<B3>,
@@ -216,7 +225,7 @@ impl ContactProblem {
             wd: vec![zero; n],
             wo: vec![zero; n],
             b: vec![[0.0; 3]; n],
-            joints: vec![JointContacts::default(); n],
+            joints: vec![JointLaw::default(); n],
             red: vec![Reduction::default(); n],
             cp: vec![zero; n],
             dinv: vec![zero; n],
@@ -256,7 +265,11 @@ impl ContactProblem {
         let n = self.n;
         for k in 0..n {
             let jc = &joints[k];
-            self.joints[k] = *jc;
+            self.joints[k] = JointLaw {
+                active: jc.active,
+                bilateral: jc.bilateral,
+                mu: jc.mu,
+            };
             let w = Self::tangent_weights(jc.active);
             self.weights[k] = w;
             let r = &jc.rows;

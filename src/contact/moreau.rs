@@ -166,6 +166,9 @@ pub struct Stepper {
     pub(super) carried: Vec<[bool; 2]>,
     pub(super) flags: Vec<[bool; 2]>,
     pub(super) shifts: Vec<[f64; 3]>,
+    /// Rates `(U_R, U_L, U_t)` of the velocities before a sub-step's problem on its rows (the
+    /// persistent contacts' law and the contact work read the same numbers).
+    pub(super) rates_before: Vec<[f64; 3]>,
     pub(super) landing: Vec<[bool; 2]>,
     /// Gap and normal rate of every end at the start of the sub-step (see `rates_fresh`).
     pub(super) start_rates: Vec<[[f64; 2]; 2]>,
@@ -239,6 +242,7 @@ impl Stepper {
             carried: vec![[false; 2]; n],
             flags: vec![[false; 2]; n],
             shifts: vec![[0.0; 3]; n],
+            rates_before: vec![[0.0; 3]; n],
             landing: vec![[false; 2]; n],
             start_rates: vec![[[0.0; 2]; 2]; n],
             rates_fresh: false,
@@ -405,7 +409,9 @@ impl Stepper {
                 self.q_next[3 * j + i] = self.q[3 * j + i] + theta * h * self.v[3 * j + i];
             }
         }
-        self.drums.joints_into(&self.q_next, &mut self.predicted);
+        // Only its rows are read (`fill_contacts`).
+        self.drums
+            .joints_rows_into(&self.q_next, &mut self.predicted);
         // The index set: ends touching their face and ends predicted (linearly) to close.
         let eps = self.contact_gap;
         for k in 0..n {
@@ -435,6 +441,7 @@ impl Stepper {
         // (restitution zero).
         for k in 0..n {
             let ub = self.problem.rows_rates(k, &self.v);
+            self.rates_before[k] = ub;
             let mut shift = [0.0; 3];
             for c in 0..2 {
                 if self.options.persistent_restitution
@@ -486,7 +493,7 @@ impl Stepper {
         }
         self.energy.ground_work += work;
         let before = std::mem::replace(&mut self.v, v_new);
-        self.account_contact_work(&before, false);
+        self.account_contact_work(None, false);
         self.v_free = before;
         std::mem::swap(&mut self.q, &mut self.q_next);
         // Ends that carried an impulse go back onto their faces.
