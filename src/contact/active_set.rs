@@ -5,9 +5,9 @@
 //! only the lowest; after a cycle one joint at a time, Murty's least-index rule), then the
 //! fallbacks (Lemke, nonsmooth Gauss–Seidel).
 
+use super::blocks::{back, by_size, by_sizes, coupling, impulses, pivot};
 use super::friction::{
-    dot3, invert3, ContactProblem, JointStatus, Reduction, Slip, SolveFailure, SolveReport, B3,
-    MAX_ITERATIONS,
+    dot3, ContactProblem, JointStatus, Reduction, Slip, SolveFailure, SolveReport, MAX_ITERATIONS,
 };
 
 impl ContactProblem {
@@ -43,36 +43,10 @@ impl ContactProblem {
         red
     }
 
-    /// `S_k X E_l`: rows of joint `k`'s reduction, columns of joint `l`'s.
-    #[inline]
-    pub(super) fn reduced_block(rk: &Reduction, x: &B3, rl: &Reduction) -> B3 {
-        let mut out = [[0.0; 3]; 3];
-        for i in 0..rk.size {
-            let row = &x[rk.rows[i]];
-            for j in 0..rl.size {
-                out[i][j] = dot3(row, &rl.cols[j]);
-            }
-        }
-        out
-    }
-
-    #[inline]
-    pub(super) fn reduced_block_t(rk: &Reduction, x: &B3, rl: &Reduction) -> B3 {
-        // Uses Xᵀ: rows of X's columns.
-        let mut out = [[0.0; 3]; 3];
-        for i in 0..rk.size {
-            let r = rk.rows[i];
-            let row = [x[0][r], x[1][r], x[2][r]];
-            for j in 0..rl.size {
-                out[i][j] = dot3(&row, &rl.cols[j]);
-            }
-        }
-        out
-    }
-
     /// One linear solve for the statuses; fills `p` and `u`. `false` if singular. Joints below
     /// `from` have the statuses of the previous solve: their reductions and eliminated blocks are
-    /// kept (the coupling of joint `from − 1` with joint `from` is redone).
+    /// kept (the coupling of joint `from − 1` with joint `from` is redone). The block kernels
+    /// take the joints' sizes as constants ([`super::blocks`]).
     fn linear_solve(&mut self, statuses: &[JointStatus], from: usize) -> bool {
         let n = self.n;
         for k in from..n {
@@ -80,110 +54,58 @@ impl ContactProblem {
         }
         if from > 0 {
             let k = from - 1;
-            let rk = self.red[k];
-            let rn = self.red[from];
-            let a_up = Self::reduced_block(&rk, &self.wo[k], &rn);
-            let dinv = self.dinv[k];
-            let mut c = [[0.0; 3]; 3];
-            for i in 0..rk.size {
-                for j in 0..rn.size {
-                    let mut acc = 0.0;
-                    for l in 0..rk.size {
-                        acc += dinv[i][l] * a_up[l][j];
-                    }
-                    c[i][j] = acc;
-                }
-            }
-            self.cp[k] = c;
+            let (rk, rn) = (&self.red[k], &self.red[from]);
+            let (wo, dinv) = (&self.wo[k], &self.dinv[k]);
+            self.cp[k] = by_sizes!(coupling, rk.size, rn.size, (rk, rn, wo, dinv));
         }
         // Forward elimination.
         for k in from..n {
-            let rk = self.red[k];
+            let rk = &self.red[k];
             let m = rk.size;
             if m == 0 {
                 self.dp[k] = [0.0; 3];
                 self.cp[k] = [[0.0; 3]; 3];
                 continue;
             }
-            let mut d = Self::reduced_block(&rk, &self.wd[k], &rk);
-            let mut rhs = [0.0; 3];
-            for i in 0..m {
-                rhs[i] = -self.b[k][rk.rows[i]];
-            }
-            if k > 0 && self.red[k - 1].size > 0 {
-                let rp = self.red[k - 1];
-                let a_lo = Self::reduced_block_t(&rk, &self.wo[k - 1], &rp);
-                let cprev = &self.cp[k - 1];
-                let dprev = &self.dp[k - 1];
-                for i in 0..m {
-                    for j in 0..m {
-                        let mut acc = 0.0;
-                        for l in 0..rp.size {
-                            acc += a_lo[i][l] * cprev[l][j];
-                        }
-                        d[i][j] -= acc;
-                    }
-                    let mut acc = 0.0;
-                    for l in 0..rp.size {
-                        acc += a_lo[i][l] * dprev[l];
-                    }
-                    rhs[i] -= acc;
-                }
-            }
-            let Some(dinv) = invert3(&d, m) else {
+            let (rp, wo_prev, cprev, dprev, p) = if k > 0 {
+                let rp = &self.red[k - 1];
+                (
+                    rp,
+                    &self.wo[k - 1],
+                    &self.cp[k - 1],
+                    &self.dp[k - 1],
+                    rp.size,
+                )
+            } else {
+                (rk, &self.wo[k], &self.cp[k], &self.dp[k], 0)
+            };
+            let (wd, b) = (&self.wd[k], &self.b[k]);
+            let pivot = by_sizes!(pivot, m, p, (rk, rp, wd, b, wo_prev, cprev, dprev));
+            let Some((dinv, y)) = pivot else {
                 return false;
             };
             self.dinv[k] = dinv;
-            let mut y = [0.0; 3];
-            for i in 0..m {
-                for j in 0..m {
-                    y[i] += dinv[i][j] * rhs[j];
-                }
-            }
             self.dp[k] = y;
             if k + 1 < n {
-                let rn = self.red[k + 1];
-                let a_up = Self::reduced_block(&rk, &self.wo[k], &rn);
-                let mut c = [[0.0; 3]; 3];
-                for i in 0..m {
-                    for j in 0..rn.size {
-                        let mut acc = 0.0;
-                        for l in 0..m {
-                            acc += dinv[i][l] * a_up[l][j];
-                        }
-                        c[i][j] = acc;
-                    }
-                }
-                self.cp[k] = c;
+                let rn = &self.red[k + 1];
+                let wo = &self.wo[k];
+                self.cp[k] = by_sizes!(coupling, m, rn.size, (rk, rn, wo, &dinv));
             }
         }
         // Back substitution.
-        for k in (0..n).rev() {
-            let m = self.red[k].size;
-            let mut z = self.dp[k];
-            if k + 1 < n {
-                let rn = self.red[k + 1].size;
-                let zn = self.z[k + 1];
-                for i in 0..m {
-                    let mut acc = 0.0;
-                    for j in 0..rn {
-                        acc += self.cp[k][i][j] * zn[j];
-                    }
-                    z[i] -= acc;
-                }
-            }
-            self.z[k] = z;
+        if n == 0 {
+            return true;
+        }
+        self.z[n - 1] = self.dp[n - 1];
+        for k in (0..n - 1).rev() {
+            let (m, rn) = (self.red[k].size, self.red[k + 1].size);
+            let (dp, cp, zn) = (&self.dp[k], &self.cp[k], &self.z[k + 1]);
+            self.z[k] = by_sizes!(back, m, rn, (dp, cp, zn));
         }
         let mut finite = true;
         for k in 0..n {
             let red = &self.red[k];
-            let mut p = [0.0; 3];
-            for j in 0..red.size {
-                let zj = self.z[k][j];
-                for a in 0..3 {
-                    p[a] += red.cols[j][a] * zj;
-                }
-            }
+            let p = by_size!(impulses, red.size, (red, &self.z[k]));
             finite &= p.iter().all(|x| x.is_finite());
             self.p[k] = p;
         }
