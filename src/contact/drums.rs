@@ -95,11 +95,13 @@ struct Frame {
 }
 
 impl Frame {
+    #[inline(always)]
     fn of(q: &[f64], j: usize) -> Frame {
         let (s, co) = q[3 * j + 2].sin_cos();
         Frame::with(q, j, s, co)
     }
 
+    #[inline(always)]
     fn with(q: &[f64], j: usize, s: f64, co: f64) -> Frame {
         Frame {
             c: [q[3 * j], q[3 * j + 1]],
@@ -111,6 +113,7 @@ impl Frame {
     /// The frame of drum `j` after `below`, the frame of drum `j − 1`: the sine and cosine are
     /// taken over when the two angles have the same bits (drums turning together, the common
     /// case: the same function of the same number), else computed.
+    #[inline(always)]
     fn next(q: &[f64], j: usize, below: &Frame) -> Frame {
         if j > 0 && q[3 * j + 2].to_bits() == q[3 * j - 1].to_bits() {
             Frame::with(q, j, below.e1[1], below.e1[0])
@@ -137,6 +140,7 @@ impl Frame {
 
 /// Jacobian rows at location `r` with normal `n` for the upper body centred at `cu` and the lower
 /// body centred at `cl` (`None`: the ground, zero rows).
+#[inline(always)]
 fn rows_at(r: [f64; 2], n: [f64; 2], cu: [f64; 2], cl: Option<[f64; 2]>) -> ContactRows {
     let t = [n[1], -n[0]];
     let du = [r[0] - cu[0], r[1] - cu[1]];
@@ -327,39 +331,30 @@ impl Drums {
             let corner_up = up.at(s * eu, -hu);
             // The upper corner's position along the lower face.
             let along = dot([corner_up[0] - o_low[0], corner_up[1] - o_low[1]], low.e1);
-            let end = if s * along <= el {
+            // Written field by field in place (no temporary end to copy).
+            let end = &mut g.ends[i];
+            if s * along <= el {
                 // The upper drum's corner on the lower face.
                 let n = low.e2;
-                let gap = if FULL {
-                    dot([corner_up[0] - o_low[0], corner_up[1] - o_low[1]], n)
-                } else {
-                    g.ends[i].gap
-                };
-                ContactEnd {
-                    point: corner_up,
-                    normal: n,
-                    gap,
-                    upper_corner: true,
-                    rows: rows_at(corner_up, n, up.c, cl),
+                if FULL {
+                    end.gap = dot([corner_up[0] - o_low[0], corner_up[1] - o_low[1]], n);
                 }
+                end.point = corner_up;
+                end.normal = n;
+                end.upper_corner = true;
+                end.rows = rows_at(corner_up, n, up.c, cl);
             } else {
                 // The lower drum's corner against the upper face.
                 let corner_low = low.at(s * el, hl);
                 let n = up.e2;
-                let gap = if FULL {
-                    dot([o_up[0] - corner_low[0], o_up[1] - corner_low[1]], n)
-                } else {
-                    g.ends[i].gap
-                };
-                ContactEnd {
-                    point: corner_low,
-                    normal: n,
-                    gap,
-                    upper_corner: false,
-                    rows: rows_at(corner_low, n, up.c, cl),
+                if FULL {
+                    end.gap = dot([o_up[0] - corner_low[0], o_up[1] - corner_low[1]], n);
                 }
-            };
-            g.ends[i] = end;
+                end.point = corner_low;
+                end.normal = n;
+                end.upper_corner = false;
+                end.rows = rows_at(corner_low, n, up.c, cl);
+            }
         }
         if !FULL {
             return;
