@@ -116,26 +116,28 @@ impl ContactProblem {
     /// `u = W p + b`.
     pub(super) fn update_rates(&mut self) {
         let n = self.n;
+        let (wd, wo, b, ps) = (&self.wd[..n], &self.wo[..n], &self.b[..n], &self.p[..n]);
+        let us = &mut self.u[..n];
         for k in 0..n {
-            let mut u = self.b[k];
-            let p = self.p[k];
+            let mut u = b[k];
+            let p = ps[k];
             for a in 0..3 {
-                u[a] += dot3(&self.wd[k][a], &p);
+                u[a] += dot3(&wd[k][a], &p);
             }
             if k + 1 < n {
-                let pn = self.p[k + 1];
+                let pn = ps[k + 1];
                 for a in 0..3 {
-                    u[a] += dot3(&self.wo[k][a], &pn);
+                    u[a] += dot3(&wo[k][a], &pn);
                 }
             }
             if k > 0 {
-                let pp = self.p[k - 1];
-                let o = &self.wo[k - 1];
+                let pp = ps[k - 1];
+                let o = &wo[k - 1];
                 for a in 0..3 {
                     u[a] += o[0][a] * pp[0] + o[1][a] * pp[1] + o[2][a] * pp[2];
                 }
             }
-            self.u[k] = u;
+            us[k] = u;
         }
     }
 

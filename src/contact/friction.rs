@@ -119,8 +119,8 @@ pub(super) struct Reduction {
 #[derive(Clone, Debug, Default)]
 pub struct ContactProblem {
     pub(super) n: usize,
-    /// Inverse masses, `3n`.
-    pub(super) inv_mass: Vec<f64>,
+    /// Inverse masses `[1/m, 1/m, 1/I]` per drum.
+    pub(super) inv_mass: Vec<[f64; 3]>,
     /// Jacobian rows of each joint for its upper and lower drum: `[nR, nL, t]`, each `[x, y, θ]`.
     pub(super) up: Vec<B3>,
     pub(super) low: Vec<B3>,
@@ -211,9 +211,9 @@ impl ContactProblem {
     /// A workspace for `n` drums with the given masses and moments of inertia.
     pub fn new(masses: &[f64], inertias: &[f64]) -> ContactProblem {
         let n = masses.len();
-        let mut inv_mass = Vec::with_capacity(3 * n);
+        let mut inv_mass = Vec::with_capacity(n);
         for j in 0..n {
-            inv_mass.extend_from_slice(&[1.0 / masses[j], 1.0 / masses[j], 1.0 / inertias[j]]);
+            inv_mass.push([1.0 / masses[j], 1.0 / masses[j], 1.0 / inertias[j]]);
         }
         let zero = [[0.0; 3]; 3];
         ContactProblem {
@@ -263,15 +263,21 @@ impl ContactProblem {
     /// Sets up the problem: the joints' contacts and the free velocities `v_free` (`3n`).
     pub fn set(&mut self, joints: &[JointContacts], v_free: &[f64]) {
         let n = self.n;
+        // Slices of length `n` (per drum `[x, y, θ]`): the indices below need no checks.
+        let joints = &joints[..n];
+        let v_free = &v_free.as_chunks::<3>().0[..n];
+        let inv_mass = &self.inv_mass[..n];
+        let (ups, lows) = (&mut self.up[..n], &mut self.low[..n]);
+        let (laws, weights) = (&mut self.joints[..n], &mut self.weights[..n]);
         for k in 0..n {
             let jc = &joints[k];
-            self.joints[k] = JointLaw {
+            laws[k] = JointLaw {
                 active: jc.active,
                 bilateral: jc.bilateral,
                 mu: jc.mu,
             };
             let w = Self::tangent_weights(jc.active);
-            self.weights[k] = w;
+            weights[k] = w;
             let r = &jc.rows;
             let t = |a: [f64; 3], b: [f64; 3]| {
                 [
@@ -280,17 +286,15 @@ impl ContactProblem {
                     w[0] * a[2] + w[1] * b[2],
                 ]
             };
-            self.up[k] = [r[0].n_up, r[1].n_up, t(r[0].t_up, r[1].t_up)];
-            self.low[k] = [r[0].n_low, r[1].n_low, t(r[0].t_low, r[1].t_low)];
+            ups[k] = [r[0].n_up, r[1].n_up, t(r[0].t_up, r[1].t_up)];
+            lows[k] = [r[0].n_low, r[1].n_low, t(r[0].t_low, r[1].t_low)];
         }
+        let (ups, lows) = (&self.up[..n], &self.low[..n]);
+        let (wds, wos, bs) = (&mut self.wd[..n], &mut self.wo[..n], &mut self.b[..n]);
         for k in 0..n {
-            let up = self.up[k];
-            let mu = [
-                self.inv_mass[3 * k],
-                self.inv_mass[3 * k + 1],
-                self.inv_mass[3 * k + 2],
-            ];
-            let vu = [v_free[3 * k], v_free[3 * k + 1], v_free[3 * k + 2]];
+            let up = ups[k];
+            let mu = inv_mass[k];
+            let vu = v_free[k];
             let mut w = [[0.0; 3]; 3];
             let mut b = [0.0; 3];
             let mut mup = [[0.0; 3]; 3];
@@ -304,13 +308,9 @@ impl ContactProblem {
                 }
             }
             if k > 0 {
-                let low = self.low[k];
-                let ml = [
-                    self.inv_mass[3 * k - 3],
-                    self.inv_mass[3 * k - 2],
-                    self.inv_mass[3 * k - 1],
-                ];
-                let vl = [v_free[3 * k - 3], v_free[3 * k - 2], v_free[3 * k - 1]];
+                let low = lows[k];
+                let ml = inv_mass[k - 1];
+                let vl = v_free[k - 1];
                 for a in 0..3 {
                     b[a] += dot3(&low[a], &vl);
                     let ml_a = [low[a][0] * ml[0], low[a][1] * ml[1], low[a][2] * ml[2]];
@@ -324,18 +324,18 @@ impl ContactProblem {
                     w[a][c] = w[c][a];
                 }
             }
-            self.wd[k] = w;
-            self.b[k] = b;
+            wds[k] = w;
+            bs[k] = b;
             // Coupling with joint k+1 through drum k.
             if k + 1 < n {
-                let ln = self.low[k + 1];
+                let ln = &lows[k + 1];
                 let mut o = [[0.0; 3]; 3];
                 for a in 0..3 {
                     for c in 0..3 {
                         o[a][c] = dot3(&mup[a], &ln[c]);
                     }
                 }
-                self.wo[k] = o;
+                wos[k] = o;
             }
         }
     }
@@ -368,15 +368,18 @@ impl ContactProblem {
 
     /// Relative velocities `(U_R, U_L, U_t)` of joint `k` on the problem's rows for velocities `v`.
     pub fn rows_rates(&self, k: usize, v: &[f64]) -> [f64; 3] {
-        let vu = [v[3 * k], v[3 * k + 1], v[3 * k + 2]];
+        let v = v.as_chunks::<3>().0;
+        let vu = v[k];
         let mut u = [0.0; 3];
+        let up = &self.up[k];
         for a in 0..3 {
-            u[a] = dot3(&self.up[k][a], &vu);
+            u[a] = dot3(&up[a], &vu);
         }
         if k > 0 {
-            let vl = [v[3 * k - 3], v[3 * k - 2], v[3 * k - 1]];
+            let vl = v[k - 1];
+            let low = &self.low[k];
             for a in 0..3 {
-                u[a] += dot3(&self.low[k][a], &vl);
+                u[a] += dot3(&low[a], &vl);
             }
         }
         u
@@ -385,21 +388,24 @@ impl ContactProblem {
     /// `v = v_free + M⁻¹ Hᵀ P` (`v` holds `v_free` on entry).
     pub fn apply(&self, v: &mut [f64]) {
         let n = self.n;
+        let v = &mut v.as_chunks_mut::<3>().0[..n];
+        let (ps, ups, lows) = (&self.p[..n], &self.up[..n], &self.low[..n]);
+        let inv_mass = &self.inv_mass[..n];
         for k in 0..n {
-            let p = self.p[k];
+            let p = ps[k];
             if p == [0.0; 3] {
                 continue;
             }
-            let up = &self.up[k];
+            let up = &ups[k];
             for i in 0..3 {
                 let acc = up[0][i] * p[0] + up[1][i] * p[1] + up[2][i] * p[2];
-                v[3 * k + i] += self.inv_mass[3 * k + i] * acc;
+                v[k][i] += inv_mass[k][i] * acc;
             }
             if k > 0 {
-                let low = &self.low[k];
+                let low = &lows[k];
                 for i in 0..3 {
                     let acc = low[0][i] * p[0] + low[1][i] * p[1] + low[2][i] * p[2];
-                    v[3 * k - 3 + i] += self.inv_mass[3 * k - 3 + i] * acc;
+                    v[k - 1][i] += inv_mass[k - 1][i] * acc;
                 }
             }
         }
