@@ -49,65 +49,64 @@ impl ContactProblem {
     /// take the joints' sizes as constants ([`super::blocks`]).
     fn linear_solve(&mut self, statuses: &[JointStatus], from: usize) -> bool {
         let n = self.n;
+        if n == 0 {
+            return true;
+        }
         for k in from..n {
             self.red[k] = self.reduce(k, &statuses[k]);
         }
+        // Slices of length `n`: the indices below need no checks.
+        let (red, wo, wd, b) = (&self.red[..n], &self.wo[..n], &self.wd[..n], &self.b[..n]);
+        let (cp, dp, dinvs) = (&mut self.cp[..n], &mut self.dp[..n], &mut self.dinv[..n]);
         if from > 0 {
             let k = from - 1;
-            let (rk, rn) = (&self.red[k], &self.red[from]);
-            let (wo, dinv) = (&self.wo[k], &self.dinv[k]);
-            self.cp[k] = by_sizes!(coupling, rk.size, rn.size, (rk, rn, wo, dinv));
+            let (rk, rn) = (&red[k], &red[from]);
+            let (wo, dinv) = (&wo[k], &dinvs[k]);
+            cp[k] = by_sizes!(coupling, rk.size, rn.size, (rk, rn, wo, dinv));
         }
         // Forward elimination.
         for k in from..n {
-            let rk = &self.red[k];
+            let rk = &red[k];
             let m = rk.size;
             if m == 0 {
-                self.dp[k] = [0.0; 3];
-                self.cp[k] = [[0.0; 3]; 3];
+                dp[k] = [0.0; 3];
+                cp[k] = [[0.0; 3]; 3];
                 continue;
             }
             let (rp, wo_prev, cprev, dprev, p) = if k > 0 {
-                let rp = &self.red[k - 1];
-                (
-                    rp,
-                    &self.wo[k - 1],
-                    &self.cp[k - 1],
-                    &self.dp[k - 1],
-                    rp.size,
-                )
+                let rp = &red[k - 1];
+                (rp, &wo[k - 1], &cp[k - 1], &dp[k - 1], rp.size)
             } else {
-                (rk, &self.wo[k], &self.cp[k], &self.dp[k], 0)
+                (rk, &wo[k], &cp[k], &dp[k], 0)
             };
-            let (wd, b) = (&self.wd[k], &self.b[k]);
+            let (wd, b) = (&wd[k], &b[k]);
             let pivot = by_sizes!(pivot, m, p, (rk, rp, wd, b, wo_prev, cprev, dprev));
             let Some((dinv, y)) = pivot else {
                 return false;
             };
-            self.dinv[k] = dinv;
-            self.dp[k] = y;
+            dinvs[k] = dinv;
+            dp[k] = y;
             if k + 1 < n {
-                let rn = &self.red[k + 1];
-                let wo = &self.wo[k];
-                self.cp[k] = by_sizes!(coupling, m, rn.size, (rk, rn, wo, &dinv));
+                let rn = &red[k + 1];
+                let wo = &wo[k];
+                cp[k] = by_sizes!(coupling, m, rn.size, (rk, rn, wo, &dinv));
             }
         }
         // Back substitution.
-        if n == 0 {
-            return true;
-        }
-        self.z[n - 1] = self.dp[n - 1];
+        let z = &mut self.z[..n];
+        z[n - 1] = dp[n - 1];
         for k in (0..n - 1).rev() {
-            let (m, rn) = (self.red[k].size, self.red[k + 1].size);
-            let (dp, cp, zn) = (&self.dp[k], &self.cp[k], &self.z[k + 1]);
-            self.z[k] = by_sizes!(back, m, rn, (dp, cp, zn));
+            let (m, rn) = (red[k].size, red[k + 1].size);
+            let (dp, cp, zn) = (&dp[k], &cp[k], &z[k + 1]);
+            z[k] = by_sizes!(back, m, rn, (dp, cp, zn));
         }
         let mut finite = true;
+        let ps = &mut self.p[..n];
         for k in 0..n {
-            let red = &self.red[k];
-            let p = by_size!(impulses, red.size, (red, &self.z[k]));
+            let red = &red[k];
+            let p = by_size!(impulses, red.size, (red, &z[k]));
             finite &= p.iter().all(|x| x.is_finite());
-            self.p[k] = p;
+            ps[k] = p;
         }
         self.update_rates();
         finite
