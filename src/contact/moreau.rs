@@ -397,16 +397,21 @@ impl Stepper {
         let a = motion.acceleration(self.t + theta * h);
         let a1 = motion.acceleration(self.t + h);
         // Free velocities and the geometry of the step's midpoint (θ).
-        for j in 0..n {
-            let f = self.loads(a, j);
-            let inv = [
-                1.0 / self.drums.mass(j),
-                1.0 / self.drums.mass(j),
-                1.0 / self.drums.inertia(j),
-            ];
-            for i in 0..3 {
-                self.v_free[3 * j + i] = self.v[3 * j + i] + h * inv[i] * f[i];
-                self.q_next[3 * j + i] = self.q[3 * j + i] + theta * h * self.v[3 * j + i];
+        {
+            // Per drum `[x, y, θ]`; the inverse masses are the problem's (the same quotients).
+            let inv_mass = &self.problem.inv_mass[..n];
+            let v = &self.v.as_chunks::<3>().0[..n];
+            let q = &self.q.as_chunks::<3>().0[..n];
+            let v_free = &mut self.v_free.as_chunks_mut::<3>().0[..n];
+            let q_next = &mut self.q_next.as_chunks_mut::<3>().0[..n];
+            for j in 0..n {
+                let m = self.drums.mass(j);
+                let f = [-m * a, -m * self.options.gravity, 0.0];
+                let inv = inv_mass[j];
+                for i in 0..3 {
+                    v_free[j][i] = v[j][i] + h * inv[i] * f[i];
+                    q_next[j][i] = q[j][i] + theta * h * v[j][i];
+                }
             }
         }
         // Only its rows are read (`fill_contacts`).
@@ -483,13 +488,19 @@ impl Stepper {
         }
         // Positions, ground work, contact work.
         let mut work = 0.0;
-        for j in 0..n {
-            for i in 0..3 {
-                let vt = (1.0 - theta) * self.v[3 * j + i] + theta * v_new[3 * j + i];
-                self.q_next[3 * j + i] = self.q[3 * j + i] + h * vt;
+        {
+            let v = &self.v.as_chunks::<3>().0[..n];
+            let v_new = &v_new.as_chunks::<3>().0[..n];
+            let q = &self.q.as_chunks::<3>().0[..n];
+            let q_next = &mut self.q_next.as_chunks_mut::<3>().0[..n];
+            for j in 0..n {
+                for i in 0..3 {
+                    let vt = (1.0 - theta) * v[j][i] + theta * v_new[j][i];
+                    q_next[j][i] = q[j][i] + h * vt;
+                }
+                let dx = q_next[j][0] - q[j][0];
+                work += -self.drums.mass(j) * a * dx;
             }
-            let dx = self.q_next[3 * j] - self.q[3 * j];
-            work += -self.drums.mass(j) * a * dx;
         }
         self.energy.ground_work += work;
         let before = std::mem::replace(&mut self.v, v_new);
