@@ -10,6 +10,19 @@ use super::friction::{
     dot3, ContactProblem, JointStatus, Reduction, Slip, SolveFailure, SolveReport, MAX_ITERATIONS,
 };
 
+/// `x` if it is larger than `m`, else `m`: [`f64::max`] for the running maxima below, whose `m`
+/// is never NaN and whose values are never negative zeros (absolute values, positive violations,
+/// and the Delassus diagonal, only compared with zero), without its NaN handling (a NaN `x` is
+/// skipped by both).
+#[inline(always)]
+fn larger(m: f64, x: f64) -> f64 {
+    if x > m {
+        x
+    } else {
+        m
+    }
+}
+
 impl ContactProblem {
     /// The reduction of joint `k` for status `st`.
     pub(super) fn reduce(&self, k: usize, st: &JointStatus) -> Reduction {
@@ -173,11 +186,11 @@ impl ContactProblem {
                 } else if st.closed[c] {
                     if p[c] < -tol_p {
                         next.closed[c] = false;
-                        viol = viol.max(-p[c] / p_ref);
+                        viol = larger(viol, -p[c] / p_ref);
                     }
                 } else if u[c] < -tol_u {
                     next.closed[c] = true;
-                    viol = viol.max(-u[c] / u_ref);
+                    viol = larger(viol, -u[c] / u_ref);
                 }
             }
             let any_closed = (jc.active[0] && st.closed[0]) || (jc.active[1] && st.closed[1]);
@@ -191,7 +204,7 @@ impl ContactProblem {
                             } else {
                                 Slip::Positive
                             };
-                            viol = viol.max((p[2].abs() - bound) / p_ref);
+                            viol = larger(viol, (p[2].abs() - bound) / p_ref);
                         }
                     }
                     slip => {
@@ -210,7 +223,7 @@ impl ContactProblem {
                             } else {
                                 Slip::Stick
                             };
-                            viol = viol.max(-s * u[2] / u_ref);
+                            viol = larger(viol, -s * u[2] / u_ref);
                         }
                     }
                 }
@@ -223,11 +236,11 @@ impl ContactProblem {
                 viol = 0.0;
             } else {
                 // A change with no measured violation (bookkeeping of inactive ends) is taken.
-                viol = viol.max(f64::MIN_POSITIVE);
+                viol = larger(viol, f64::MIN_POSITIVE);
             }
             self.next[k] = next;
             self.viol[k] = viol;
-            worst = worst.max(viol);
+            worst = larger(worst, viol);
         }
         if worst == 0.0 {
             return None;
@@ -304,7 +317,7 @@ impl ContactProblem {
         let mut scale_u = 0.0_f64;
         for k in 0..n {
             for a in 0..3 {
-                scale_u = scale_u.max(self.b[k][a].abs());
+                scale_u = larger(scale_u, self.b[k][a].abs());
             }
         }
         let tol_u = 1e-10 * scale_u.max(1e-300);
@@ -313,7 +326,7 @@ impl ContactProblem {
         let mut wmax = 0.0_f64;
         for k in 0..n {
             for a in 0..3 {
-                wmax = wmax.max(self.wd[k][a][a]);
+                wmax = larger(wmax, self.wd[k][a][a]);
             }
         }
         let p_floor = if wmax > 0.0 { scale_u / wmax } else { 0.0 };
@@ -335,7 +348,7 @@ impl ContactProblem {
             let mut scale_p = 0.0_f64;
             for p in &self.p {
                 for x in p {
-                    scale_p = scale_p.max(x.abs());
+                    scale_p = larger(scale_p, x.abs());
                 }
             }
             let tol_p = 1e-10 * scale_p.max(p_floor).max(1e-300);

@@ -150,6 +150,7 @@ pub struct ContactProblem {
 
 /// Inverse of the leading `m × m` block (`m ≤ 3`) by the adjugate; `None` when the block is
 /// singular to working precision (|det| below `1e-13` of the product of its rows' norms).
+#[inline]
 pub(super) fn invert3(a: &B3, m: usize) -> Option<B3> {
     let mut inv = [[0.0; 3]; 3];
     match m {
