@@ -203,6 +203,20 @@ pub(super) fn invert3(a: &B3, m: usize) -> Option<B3> {
     }
 }
 
+/// Drum `k`'s `[x, y, θ]` in a vector of `3n` (one index check per drum instead of three).
+#[inline(always)]
+pub(super) fn tri(v: &[f64], k: usize) -> &[f64; 3] {
+    v[3 * k..3 * k + 3].try_into().expect("three entries")
+}
+
+/// [`tri`], mutable.
+#[inline(always)]
+pub(super) fn tri_mut(v: &mut [f64], k: usize) -> &mut [f64; 3] {
+    (&mut v[3 * k..3 * k + 3])
+        .try_into()
+        .expect("three entries")
+}
+
 #[inline]
 pub(super) fn dot3(a: &[f64; 3], b: &[f64; 3]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
@@ -264,9 +278,8 @@ impl ContactProblem {
     /// Sets up the problem: the joints' contacts and the free velocities `v_free` (`3n`).
     pub fn set(&mut self, joints: &[JointContacts], v_free: &[f64]) {
         let n = self.n;
-        // Slices of length `n` (per drum `[x, y, θ]`): the indices below need no checks.
+        // Slices of length `n`: the indices below need no checks.
         let joints = &joints[..n];
-        let v_free = &v_free.as_chunks::<3>().0[..n];
         let inv_mass = &self.inv_mass[..n];
         let (ups, lows) = (&mut self.up[..n], &mut self.low[..n]);
         let (laws, weights) = (&mut self.joints[..n], &mut self.weights[..n]);
@@ -295,7 +308,7 @@ impl ContactProblem {
         for k in 0..n {
             let up = ups[k];
             let mu = inv_mass[k];
-            let vu = v_free[k];
+            let vu = *tri(v_free, k);
             let mut w = [[0.0; 3]; 3];
             let mut b = [0.0; 3];
             let mut mup = [[0.0; 3]; 3];
@@ -311,7 +324,7 @@ impl ContactProblem {
             if k > 0 {
                 let low = lows[k];
                 let ml = inv_mass[k - 1];
-                let vl = v_free[k - 1];
+                let vl = *tri(v_free, k - 1);
                 for a in 0..3 {
                     b[a] += dot3(&low[a], &vl);
                     let ml_a = [low[a][0] * ml[0], low[a][1] * ml[1], low[a][2] * ml[2]];
@@ -369,15 +382,14 @@ impl ContactProblem {
 
     /// Relative velocities `(U_R, U_L, U_t)` of joint `k` on the problem's rows for velocities `v`.
     pub fn rows_rates(&self, k: usize, v: &[f64]) -> [f64; 3] {
-        let v = v.as_chunks::<3>().0;
-        let vu = v[k];
+        let vu = *tri(v, k);
         let mut u = [0.0; 3];
         let up = &self.up[k];
         for a in 0..3 {
             u[a] = dot3(&up[a], &vu);
         }
         if k > 0 {
-            let vl = v[k - 1];
+            let vl = *tri(v, k - 1);
             let low = &self.low[k];
             for a in 0..3 {
                 u[a] += dot3(&low[a], &vl);
@@ -389,7 +401,6 @@ impl ContactProblem {
     /// `v = v_free + M⁻¹ Hᵀ P` (`v` holds `v_free` on entry).
     pub fn apply(&self, v: &mut [f64]) {
         let n = self.n;
-        let v = &mut v.as_chunks_mut::<3>().0[..n];
         let (ps, ups, lows) = (&self.p[..n], &self.up[..n], &self.low[..n]);
         let inv_mass = &self.inv_mass[..n];
         for k in 0..n {
@@ -400,13 +411,13 @@ impl ContactProblem {
             let up = &ups[k];
             for i in 0..3 {
                 let acc = up[0][i] * p[0] + up[1][i] * p[1] + up[2][i] * p[2];
-                v[k][i] += inv_mass[k][i] * acc;
+                tri_mut(v, k)[i] += inv_mass[k][i] * acc;
             }
             if k > 0 {
                 let low = &lows[k];
                 for i in 0..3 {
                     let acc = low[0][i] * p[0] + low[1][i] * p[1] + low[2][i] * p[2];
-                    v[k - 1][i] += inv_mass[k - 1][i] * acc;
+                    tri_mut(v, k - 1)[i] += inv_mass[k - 1][i] * acc;
                 }
             }
         }

@@ -400,17 +400,19 @@ impl Stepper {
         {
             // Per drum `[x, y, θ]`; the inverse masses are the problem's (the same quotients).
             let inv_mass = &self.problem.inv_mass[..n];
-            let v = &self.v.as_chunks::<3>().0[..n];
-            let q = &self.q.as_chunks::<3>().0[..n];
-            let v_free = &mut self.v_free.as_chunks_mut::<3>().0[..n];
-            let q_next = &mut self.q_next.as_chunks_mut::<3>().0[..n];
-            for j in 0..n {
+            let drums = self
+                .v
+                .chunks_exact(3)
+                .zip(self.q.chunks_exact(3))
+                .zip(self.v_free.chunks_exact_mut(3))
+                .zip(self.q_next.chunks_exact_mut(3));
+            for (j, (((v, q), v_free), q_next)) in drums.enumerate().take(n) {
                 let m = self.drums.mass(j);
                 let f = [-m * a, -m * self.options.gravity, 0.0];
                 let inv = inv_mass[j];
                 for i in 0..3 {
-                    v_free[j][i] = v[j][i] + h * inv[i] * f[i];
-                    q_next[j][i] = q[j][i] + theta * h * v[j][i];
+                    v_free[i] = v[i] + h * inv[i] * f[i];
+                    q_next[i] = q[i] + theta * h * v[i];
                 }
             }
         }
@@ -489,16 +491,18 @@ impl Stepper {
         // Positions, ground work, contact work.
         let mut work = 0.0;
         {
-            let v = &self.v.as_chunks::<3>().0[..n];
-            let v_new = &v_new.as_chunks::<3>().0[..n];
-            let q = &self.q.as_chunks::<3>().0[..n];
-            let q_next = &mut self.q_next.as_chunks_mut::<3>().0[..n];
-            for j in 0..n {
+            let drums = self
+                .v
+                .chunks_exact(3)
+                .zip(v_new.chunks_exact(3))
+                .zip(self.q.chunks_exact(3))
+                .zip(self.q_next.chunks_exact_mut(3));
+            for (j, (((v, v_new), q), q_next)) in drums.enumerate().take(n) {
                 for i in 0..3 {
-                    let vt = (1.0 - theta) * v[j][i] + theta * v_new[j][i];
-                    q_next[j][i] = q[j][i] + h * vt;
+                    let vt = (1.0 - theta) * v[i] + theta * v_new[i];
+                    q_next[i] = q[i] + h * vt;
                 }
-                let dx = q_next[j][0] - q[j][0];
+                let dx = q_next[0] - q[0];
                 work += -self.drums.mass(j) * a * dx;
             }
         }
