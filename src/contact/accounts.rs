@@ -49,8 +49,9 @@ impl Stepper {
     /// `U_before` the rows' rates of the velocities before. In an impact (`impact`) all of it is
     /// impact dissipation; in a step, the normal work at approaching ends and the tangential work
     /// of a sticking joint with an approaching end is, the tangential work of a slipping joint is
-    /// friction, the rest is the scheme's work at persistent contacts.
-    pub(super) fn account_contact_work(&mut self, v_before: &[f64], impact: bool) {
+    /// friction, the rest is the scheme's work at persistent contacts. `v_before`: the velocities
+    /// before; `None` in a sub-step, whose rates of them are already in `rates_before`.
+    pub(super) fn account_contact_work(&mut self, v_before: Option<&[f64]>, impact: bool) {
         let n = self.drums.len();
         for k in 0..n {
             let p = self.problem.impulses(k);
@@ -61,7 +62,10 @@ impl Stepper {
             let ua = self.problem.rates(k);
             let sh = self.shifts[k];
             let ua = [ua[0] - sh[0], ua[1] - sh[1], ua[2] - sh[2]];
-            let ub = self.problem.rows_rates(k, v_before);
+            let ub = match v_before {
+                Some(v) => self.problem.rows_rates(k, v),
+                None => self.rates_before[k],
+            };
             let mut approaching = false;
             for c in 0..2 {
                 if p[c] != 0.0 {

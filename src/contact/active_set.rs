@@ -5,10 +5,23 @@
 //! only the lowest; after a cycle one joint at a time, Murty's least-index rule), then the
 //! fallbacks (Lemke, nonsmooth Gauss–Seidel).
 
+use super::blocks::{back, by_size, by_sizes, coupling, impulses, pivot};
 use super::friction::{
-    dot3, invert3, ContactProblem, JointStatus, Reduction, Slip, SolveFailure, SolveReport, B3,
-    MAX_ITERATIONS,
+    dot3, ContactProblem, JointStatus, Reduction, Slip, SolveFailure, SolveReport, MAX_ITERATIONS,
 };
+
+/// `x` if it is larger than `m`, else `m`: [`f64::max`] for the running maxima below, whose `m`
+/// is never NaN and whose values are never negative zeros (absolute values, positive violations,
+/// and the Delassus diagonal, only compared with zero), without its NaN handling (a NaN `x` is
+/// skipped by both).
+#[inline(always)]
+fn larger(m: f64, x: f64) -> f64 {
+    if x > m {
+        x
+    } else {
+        m
+    }
+}
 
 impl ContactProblem {
     /// The reduction of joint `k` for status `st`.
@@ -43,149 +56,70 @@ impl ContactProblem {
         red
     }
 
-    /// `S_k X E_l`: rows of joint `k`'s reduction, columns of joint `l`'s.
-    #[inline]
-    pub(super) fn reduced_block(rk: &Reduction, x: &B3, rl: &Reduction) -> B3 {
-        let mut out = [[0.0; 3]; 3];
-        for i in 0..rk.size {
-            let row = &x[rk.rows[i]];
-            for j in 0..rl.size {
-                out[i][j] = dot3(row, &rl.cols[j]);
-            }
-        }
-        out
-    }
-
-    #[inline]
-    pub(super) fn reduced_block_t(rk: &Reduction, x: &B3, rl: &Reduction) -> B3 {
-        // Uses Xᵀ: rows of X's columns.
-        let mut out = [[0.0; 3]; 3];
-        for i in 0..rk.size {
-            let r = rk.rows[i];
-            let row = [x[0][r], x[1][r], x[2][r]];
-            for j in 0..rl.size {
-                out[i][j] = dot3(&row, &rl.cols[j]);
-            }
-        }
-        out
-    }
-
     /// One linear solve for the statuses; fills `p` and `u`. `false` if singular. Joints below
     /// `from` have the statuses of the previous solve: their reductions and eliminated blocks are
-    /// kept (the coupling of joint `from − 1` with joint `from` is redone).
+    /// kept (the coupling of joint `from − 1` with joint `from` is redone). The block kernels
+    /// take the joints' sizes as constants ([`super::blocks`]).
     fn linear_solve(&mut self, statuses: &[JointStatus], from: usize) -> bool {
         let n = self.n;
+        if n == 0 {
+            return true;
+        }
         for k in from..n {
             self.red[k] = self.reduce(k, &statuses[k]);
         }
+        // Slices of length `n`: the indices below need no checks.
+        let (red, wo, wd, b) = (&self.red[..n], &self.wo[..n], &self.wd[..n], &self.b[..n]);
+        let (cp, dp, dinvs) = (&mut self.cp[..n], &mut self.dp[..n], &mut self.dinv[..n]);
         if from > 0 {
             let k = from - 1;
-            let rk = self.red[k];
-            let rn = self.red[from];
-            let a_up = Self::reduced_block(&rk, &self.wo[k], &rn);
-            let dinv = self.dinv[k];
-            let mut c = [[0.0; 3]; 3];
-            for i in 0..rk.size {
-                for j in 0..rn.size {
-                    let mut acc = 0.0;
-                    for l in 0..rk.size {
-                        acc += dinv[i][l] * a_up[l][j];
-                    }
-                    c[i][j] = acc;
-                }
-            }
-            self.cp[k] = c;
+            let (rk, rn) = (&red[k], &red[from]);
+            let (wo, dinv) = (&wo[k], &dinvs[k]);
+            cp[k] = by_sizes!(coupling, rk.size, rn.size, (rk, rn, wo, dinv));
         }
         // Forward elimination.
         for k in from..n {
-            let rk = self.red[k];
+            let rk = &red[k];
             let m = rk.size;
             if m == 0 {
-                self.dp[k] = [0.0; 3];
-                self.cp[k] = [[0.0; 3]; 3];
+                dp[k] = [0.0; 3];
+                cp[k] = [[0.0; 3]; 3];
                 continue;
             }
-            let mut d = Self::reduced_block(&rk, &self.wd[k], &rk);
-            let mut rhs = [0.0; 3];
-            for i in 0..m {
-                rhs[i] = -self.b[k][rk.rows[i]];
-            }
-            if k > 0 && self.red[k - 1].size > 0 {
-                let rp = self.red[k - 1];
-                let a_lo = Self::reduced_block_t(&rk, &self.wo[k - 1], &rp);
-                let cprev = &self.cp[k - 1];
-                let dprev = &self.dp[k - 1];
-                for i in 0..m {
-                    for j in 0..m {
-                        let mut acc = 0.0;
-                        for l in 0..rp.size {
-                            acc += a_lo[i][l] * cprev[l][j];
-                        }
-                        d[i][j] -= acc;
-                    }
-                    let mut acc = 0.0;
-                    for l in 0..rp.size {
-                        acc += a_lo[i][l] * dprev[l];
-                    }
-                    rhs[i] -= acc;
-                }
-            }
-            let Some(dinv) = invert3(&d, m) else {
+            let (rp, wo_prev, cprev, dprev, p) = if k > 0 {
+                let rp = &red[k - 1];
+                (rp, &wo[k - 1], &cp[k - 1], &dp[k - 1], rp.size)
+            } else {
+                (rk, &wo[k], &cp[k], &dp[k], 0)
+            };
+            let (wd, b) = (&wd[k], &b[k]);
+            let pivot = by_sizes!(pivot, m, p, (rk, rp, wd, b, wo_prev, cprev, dprev));
+            let Some((dinv, y)) = pivot else {
                 return false;
             };
-            self.dinv[k] = dinv;
-            let mut y = [0.0; 3];
-            for i in 0..m {
-                for j in 0..m {
-                    y[i] += dinv[i][j] * rhs[j];
-                }
-            }
-            self.dp[k] = y;
+            dinvs[k] = dinv;
+            dp[k] = y;
             if k + 1 < n {
-                let rn = self.red[k + 1];
-                let a_up = Self::reduced_block(&rk, &self.wo[k], &rn);
-                let mut c = [[0.0; 3]; 3];
-                for i in 0..m {
-                    for j in 0..rn.size {
-                        let mut acc = 0.0;
-                        for l in 0..m {
-                            acc += dinv[i][l] * a_up[l][j];
-                        }
-                        c[i][j] = acc;
-                    }
-                }
-                self.cp[k] = c;
+                let rn = &red[k + 1];
+                let wo = &wo[k];
+                cp[k] = by_sizes!(coupling, m, rn.size, (rk, rn, wo, &dinv));
             }
         }
         // Back substitution.
-        for k in (0..n).rev() {
-            let m = self.red[k].size;
-            let mut z = self.dp[k];
-            if k + 1 < n {
-                let rn = self.red[k + 1].size;
-                let zn = self.z[k + 1];
-                for i in 0..m {
-                    let mut acc = 0.0;
-                    for j in 0..rn {
-                        acc += self.cp[k][i][j] * zn[j];
-                    }
-                    z[i] -= acc;
-                }
-            }
-            self.z[k] = z;
+        let z = &mut self.z[..n];
+        z[n - 1] = dp[n - 1];
+        for k in (0..n - 1).rev() {
+            let (m, rn) = (red[k].size, red[k + 1].size);
+            let (dp, cp, zn) = (&dp[k], &cp[k], &z[k + 1]);
+            z[k] = by_sizes!(back, m, rn, (dp, cp, zn));
         }
         let mut finite = true;
+        let ps = &mut self.p[..n];
         for k in 0..n {
-            let red = &self.red[k];
-            let mut p = [0.0; 3];
-            for j in 0..red.size {
-                let zj = self.z[k][j];
-                for a in 0..3 {
-                    p[a] += red.cols[j][a] * zj;
-                }
-            }
+            let red = &red[k];
+            let p = by_size!(impulses, red.size, (red, &z[k]));
             finite &= p.iter().all(|x| x.is_finite());
-            self.p[k] = p;
+            ps[k] = p;
         }
         self.update_rates();
         finite
@@ -194,26 +128,28 @@ impl ContactProblem {
     /// `u = W p + b`.
     pub(super) fn update_rates(&mut self) {
         let n = self.n;
+        let (wd, wo, b, ps) = (&self.wd[..n], &self.wo[..n], &self.b[..n], &self.p[..n]);
+        let us = &mut self.u[..n];
         for k in 0..n {
-            let mut u = self.b[k];
-            let p = self.p[k];
+            let mut u = b[k];
+            let p = ps[k];
             for a in 0..3 {
-                u[a] += dot3(&self.wd[k][a], &p);
+                u[a] += dot3(&wd[k][a], &p);
             }
             if k + 1 < n {
-                let pn = self.p[k + 1];
+                let pn = ps[k + 1];
                 for a in 0..3 {
-                    u[a] += dot3(&self.wo[k][a], &pn);
+                    u[a] += dot3(&wo[k][a], &pn);
                 }
             }
             if k > 0 {
-                let pp = self.p[k - 1];
-                let o = &self.wo[k - 1];
+                let pp = ps[k - 1];
+                let o = &wo[k - 1];
                 for a in 0..3 {
                     u[a] += o[0][a] * pp[0] + o[1][a] * pp[1] + o[2][a] * pp[2];
                 }
             }
-            self.u[k] = u;
+            us[k] = u;
         }
     }
 
@@ -250,11 +186,11 @@ impl ContactProblem {
                 } else if st.closed[c] {
                     if p[c] < -tol_p {
                         next.closed[c] = false;
-                        viol = viol.max(-p[c] / p_ref);
+                        viol = larger(viol, -p[c] / p_ref);
                     }
                 } else if u[c] < -tol_u {
                     next.closed[c] = true;
-                    viol = viol.max(-u[c] / u_ref);
+                    viol = larger(viol, -u[c] / u_ref);
                 }
             }
             let any_closed = (jc.active[0] && st.closed[0]) || (jc.active[1] && st.closed[1]);
@@ -268,7 +204,7 @@ impl ContactProblem {
                             } else {
                                 Slip::Positive
                             };
-                            viol = viol.max((p[2].abs() - bound) / p_ref);
+                            viol = larger(viol, (p[2].abs() - bound) / p_ref);
                         }
                     }
                     slip => {
@@ -287,7 +223,7 @@ impl ContactProblem {
                             } else {
                                 Slip::Stick
                             };
-                            viol = viol.max(-s * u[2] / u_ref);
+                            viol = larger(viol, -s * u[2] / u_ref);
                         }
                     }
                 }
@@ -300,11 +236,11 @@ impl ContactProblem {
                 viol = 0.0;
             } else {
                 // A change with no measured violation (bookkeeping of inactive ends) is taken.
-                viol = viol.max(f64::MIN_POSITIVE);
+                viol = larger(viol, f64::MIN_POSITIVE);
             }
             self.next[k] = next;
             self.viol[k] = viol;
-            worst = worst.max(viol);
+            worst = larger(worst, viol);
         }
         if worst == 0.0 {
             return None;
@@ -381,7 +317,7 @@ impl ContactProblem {
         let mut scale_u = 0.0_f64;
         for k in 0..n {
             for a in 0..3 {
-                scale_u = scale_u.max(self.b[k][a].abs());
+                scale_u = larger(scale_u, self.b[k][a].abs());
             }
         }
         let tol_u = 1e-10 * scale_u.max(1e-300);
@@ -390,7 +326,7 @@ impl ContactProblem {
         let mut wmax = 0.0_f64;
         for k in 0..n {
             for a in 0..3 {
-                wmax = wmax.max(self.wd[k][a][a]);
+                wmax = larger(wmax, self.wd[k][a][a]);
             }
         }
         let p_floor = if wmax > 0.0 { scale_u / wmax } else { 0.0 };
@@ -412,7 +348,7 @@ impl ContactProblem {
             let mut scale_p = 0.0_f64;
             for p in &self.p {
                 for x in p {
-                    scale_p = scale_p.max(x.abs());
+                    scale_p = larger(scale_p, x.abs());
                 }
             }
             let tol_p = 1e-10 * scale_p.max(p_floor).max(1e-300);

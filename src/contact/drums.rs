@@ -95,12 +95,30 @@ struct Frame {
 }
 
 impl Frame {
+    #[inline(always)]
     fn of(q: &[f64], j: usize) -> Frame {
         let (s, co) = q[3 * j + 2].sin_cos();
+        Frame::with(q, j, s, co)
+    }
+
+    #[inline(always)]
+    fn with(q: &[f64], j: usize, s: f64, co: f64) -> Frame {
         Frame {
             c: [q[3 * j], q[3 * j + 1]],
             e1: [co, s],
             e2: [-s, co],
+        }
+    }
+
+    /// The frame of drum `j` after `below`, the frame of drum `j − 1`: the sine and cosine are
+    /// taken over when the two angles have the same bits (drums turning together, the common
+    /// case: the same function of the same number), else computed.
+    #[inline(always)]
+    fn next(q: &[f64], j: usize, below: &Frame) -> Frame {
+        if j > 0 && q[3 * j + 2].to_bits() == q[3 * j - 1].to_bits() {
+            Frame::with(q, j, below.e1[1], below.e1[0])
+        } else {
+            Frame::of(q, j)
         }
     }
 
@@ -122,6 +140,7 @@ impl Frame {
 
 /// Jacobian rows at location `r` with normal `n` for the upper body centred at `cu` and the lower
 /// body centred at `cl` (`None`: the ground, zero rows).
+#[inline(always)]
 fn rows_at(r: [f64; 2], n: [f64; 2], cu: [f64; 2], cl: Option<[f64; 2]>) -> ContactRows {
     let t = [n[1], -n[0]];
     let du = [r[0] - cu[0], r[1] - cu[1]];
@@ -259,12 +278,25 @@ impl Drums {
         (Frame::of(q, k), low)
     }
 
-    /// Contact geometry of every joint at positions `q` into `out` (one `sin_cos` per drum).
+    /// Contact geometry of every joint at positions `q` into `out` (at most one `sin_cos` per
+    /// drum).
     pub fn joints_into(&self, q: &[f64], out: &mut [JointGeometry]) {
         let mut low = Frame::ground();
         for (k, g) in out.iter_mut().enumerate().take(self.len()) {
-            let up = Frame::of(q, k);
-            self.joint_into(k, &up, &low, g);
+            let up = Frame::next(q, k, &low);
+            self.joint_into::<true>(k, &up, &low, g);
+            low = up;
+        }
+    }
+
+    /// Only the Jacobian rows (and the points and normals) of every joint's ends at `q` into
+    /// `out`, the same numbers as [`Drums::joints_into`]'s; the gaps, the slip and the overlap
+    /// are left as they were (a step's midpoint geometry needs only its rows).
+    pub fn joints_rows_into(&self, q: &[f64], out: &mut [JointGeometry]) {
+        let mut low = Frame::ground();
+        for (k, g) in out.iter_mut().enumerate().take(self.len()) {
+            let up = Frame::next(q, k, &low);
+            self.joint_into::<false>(k, &up, &low, g);
             low = up;
         }
     }
@@ -273,13 +305,20 @@ impl Drums {
     pub fn joint(&self, q: &[f64], k: usize) -> JointGeometry {
         let (up, low) = self.frames(q, k);
         let mut g = JointGeometry::default();
-        self.joint_into(k, &up, &low, &mut g);
+        self.joint_into::<true>(k, &up, &low, &mut g);
         g
     }
 
     /// Contact geometry of joint `k` between the frames `up` and `low`, written into `g` (in
     /// place: a geometry is a few hundred bytes, and two columns' worth are made every step).
-    fn joint_into(&self, k: usize, up: &Frame, low: &Frame, g: &mut JointGeometry) {
+    /// Without `FULL`, only the ends' points, normals, corners and rows.
+    fn joint_into<const FULL: bool>(
+        &self,
+        k: usize,
+        up: &Frame,
+        low: &Frame,
+        g: &mut JointGeometry,
+    ) {
         let (up, low) = (*up, *low);
         let hl = if k == 0 { 0.0 } else { self.half_height[k - 1] };
         let hu = self.half_height[k];
@@ -292,31 +331,33 @@ impl Drums {
             let corner_up = up.at(s * eu, -hu);
             // The upper corner's position along the lower face.
             let along = dot([corner_up[0] - o_low[0], corner_up[1] - o_low[1]], low.e1);
-            let end = if s * along <= el {
+            // Written field by field in place (no temporary end to copy).
+            let end = &mut g.ends[i];
+            if s * along <= el {
                 // The upper drum's corner on the lower face.
                 let n = low.e2;
-                let gap = dot([corner_up[0] - o_low[0], corner_up[1] - o_low[1]], n);
-                ContactEnd {
-                    point: corner_up,
-                    normal: n,
-                    gap,
-                    upper_corner: true,
-                    rows: rows_at(corner_up, n, up.c, cl),
+                if FULL {
+                    end.gap = dot([corner_up[0] - o_low[0], corner_up[1] - o_low[1]], n);
                 }
+                end.point = corner_up;
+                end.normal = n;
+                end.upper_corner = true;
+                end.rows = rows_at(corner_up, n, up.c, cl);
             } else {
                 // The lower drum's corner against the upper face.
                 let corner_low = low.at(s * el, hl);
                 let n = up.e2;
-                let gap = dot([o_up[0] - corner_low[0], o_up[1] - corner_low[1]], n);
-                ContactEnd {
-                    point: corner_low,
-                    normal: n,
-                    gap,
-                    upper_corner: false,
-                    rows: rows_at(corner_low, n, up.c, cl),
+                if FULL {
+                    end.gap = dot([o_up[0] - corner_low[0], o_up[1] - corner_low[1]], n);
                 }
-            };
-            g.ends[i] = end;
+                end.point = corner_low;
+                end.normal = n;
+                end.upper_corner = false;
+                end.rows = rows_at(corner_low, n, up.c, cl);
+            }
+        }
+        if !FULL {
+            return;
         }
         // Overlap of the faces along the lower face.
         let centre_along = dot([o_up[0] - o_low[0], o_up[1] - o_low[1]], low.e1);
@@ -324,12 +365,11 @@ impl Drums {
         let lo = (centre_along - eu * dot(up.e1, low.e1)).max(-el);
         g.overlap = hi - lo;
         // Slip at the end with the smaller gap.
-        let e = if g.ends[0].gap <= g.ends[1].gap {
-            g.ends[0]
+        let r = if g.ends[0].gap <= g.ends[1].gap {
+            g.ends[0].point
         } else {
-            g.ends[1]
+            g.ends[1].point
         };
-        let r = e.point;
         let x_low = dot([r[0] - o_low[0], r[1] - o_low[1]], low.e1);
         let x_up = dot([r[0] - o_up[0], r[1] - o_up[1]], up.e1);
         g.slip = x_low - x_up;

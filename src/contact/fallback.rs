@@ -6,6 +6,7 @@
 //! §13.4.5), joint by joint with exact local solves, to a relative change of `1e-12` or at most
 //! 20 000 sweeps.
 
+use super::blocks::by_size;
 use super::friction::{ContactProblem, JointStatus, Slip, SolveFailure, B3};
 
 /// A variable of the LCP.
@@ -315,6 +316,13 @@ impl ContactProblem {
 /// Solves the leading `m × m` system by Gaussian elimination with partial pivoting; `None` when
 /// singular (`m = 0` gives the empty solution).
 fn solve_small(a: &B3, b: &[f64; 3], m: usize) -> Option<[f64; 3]> {
+    by_size!(solve_sized, m, (a, b))
+}
+
+/// [`solve_small`] with the size `M` a constant (the same operations; see [`super::blocks`]).
+#[inline(always)]
+fn solve_sized<const M: usize>(a: &B3, b: &[f64; 3]) -> Option<[f64; 3]> {
+    let m = M;
     let mut a = *a;
     let mut b = *b;
     for c in 0..m {

@@ -43,6 +43,15 @@ pub struct JointContacts {
     pub mu: f64,
 }
 
+/// What the solvers read of a joint's [`JointContacts`] (its rows go into the Delassus blocks):
+/// kept apart so that setting a problem up does not copy the rows a second time.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(super) struct JointLaw {
+    pub(super) active: [bool; 2],
+    pub(super) bilateral: [bool; 2],
+    pub(super) mu: f64,
+}
+
 /// Slip status of a joint.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum Slip {
@@ -110,8 +119,8 @@ pub(super) struct Reduction {
 #[derive(Clone, Debug, Default)]
 pub struct ContactProblem {
     pub(super) n: usize,
-    /// Inverse masses, `3n`.
-    pub(super) inv_mass: Vec<f64>,
+    /// Inverse masses `[1/m, 1/m, 1/I]` per drum.
+    pub(super) inv_mass: Vec<[f64; 3]>,
     /// Jacobian rows of each joint for its upper and lower drum: `[nR, nL, t]`, each `[x, y, θ]`.
     pub(super) up: Vec<B3>,
     pub(super) low: Vec<B3>,
@@ -123,7 +132,7 @@ pub struct ContactProblem {
     pub(super) wo: Vec<B3>,
     /// Free relative velocities.
     pub(super) b: Vec<[f64; 3]>,
-    pub(super) joints: Vec<JointContacts>,
+    pub(super) joints: Vec<JointLaw>,
     pub(super) red: Vec<Reduction>,
     pub(super) cp: Vec<B3>,
     pub(super) dinv: Vec<B3>,
@@ -141,6 +150,7 @@ pub struct ContactProblem {
 
 /// Inverse of the leading `m × m` block (`m ≤ 3`) by the adjugate; `None` when the block is
 /// singular to working precision (|det| below `1e-13` of the product of its rows' norms).
+#[inline]
 pub(super) fn invert3(a: &B3, m: usize) -> Option<B3> {
     let mut inv = [[0.0; 3]; 3];
     match m {
@@ -193,6 +203,20 @@ pub(super) fn invert3(a: &B3, m: usize) -> Option<B3> {
     }
 }
 
+/// Drum `k`'s `[x, y, θ]` in a vector of `3n` (one index check per drum instead of three).
+#[inline(always)]
+pub(super) fn tri(v: &[f64], k: usize) -> &[f64; 3] {
+    v[3 * k..3 * k + 3].try_into().expect("three entries")
+}
+
+/// [`tri`], mutable.
+#[inline(always)]
+pub(super) fn tri_mut(v: &mut [f64], k: usize) -> &mut [f64; 3] {
+    (&mut v[3 * k..3 * k + 3])
+        .try_into()
+        .expect("three entries")
+}
+
 #[inline]
 pub(super) fn dot3(a: &[f64; 3], b: &[f64; 3]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
@@ -202,9 +226,9 @@ impl ContactProblem {
     /// A workspace for `n` drums with the given masses and moments of inertia.
     pub fn new(masses: &[f64], inertias: &[f64]) -> ContactProblem {
         let n = masses.len();
-        let mut inv_mass = Vec::with_capacity(3 * n);
+        let mut inv_mass = Vec::with_capacity(n);
         for j in 0..n {
-            inv_mass.extend_from_slice(&[1.0 / masses[j], 1.0 / masses[j], 1.0 / inertias[j]]);
+            inv_mass.push([1.0 / masses[j], 1.0 / masses[j], 1.0 / inertias[j]]);
         }
         let zero = [[0.0; 3]; 3];
         ContactProblem {
@@ -216,7 +240,7 @@ impl ContactProblem {
             wd: vec![zero; n],
             wo: vec![zero; n],
             b: vec![[0.0; 3]; n],
-            joints: vec![JointContacts::default(); n],
+            joints: vec![JointLaw::default(); n],
             red: vec![Reduction::default(); n],
             cp: vec![zero; n],
             dinv: vec![zero; n],
@@ -254,11 +278,20 @@ impl ContactProblem {
     /// Sets up the problem: the joints' contacts and the free velocities `v_free` (`3n`).
     pub fn set(&mut self, joints: &[JointContacts], v_free: &[f64]) {
         let n = self.n;
+        // Slices of length `n`: the indices below need no checks.
+        let joints = &joints[..n];
+        let inv_mass = &self.inv_mass[..n];
+        let (ups, lows) = (&mut self.up[..n], &mut self.low[..n]);
+        let (laws, weights) = (&mut self.joints[..n], &mut self.weights[..n]);
         for k in 0..n {
             let jc = &joints[k];
-            self.joints[k] = *jc;
+            laws[k] = JointLaw {
+                active: jc.active,
+                bilateral: jc.bilateral,
+                mu: jc.mu,
+            };
             let w = Self::tangent_weights(jc.active);
-            self.weights[k] = w;
+            weights[k] = w;
             let r = &jc.rows;
             let t = |a: [f64; 3], b: [f64; 3]| {
                 [
@@ -267,17 +300,15 @@ impl ContactProblem {
                     w[0] * a[2] + w[1] * b[2],
                 ]
             };
-            self.up[k] = [r[0].n_up, r[1].n_up, t(r[0].t_up, r[1].t_up)];
-            self.low[k] = [r[0].n_low, r[1].n_low, t(r[0].t_low, r[1].t_low)];
+            ups[k] = [r[0].n_up, r[1].n_up, t(r[0].t_up, r[1].t_up)];
+            lows[k] = [r[0].n_low, r[1].n_low, t(r[0].t_low, r[1].t_low)];
         }
+        let (ups, lows) = (&self.up[..n], &self.low[..n]);
+        let (wds, wos, bs) = (&mut self.wd[..n], &mut self.wo[..n], &mut self.b[..n]);
         for k in 0..n {
-            let up = self.up[k];
-            let mu = [
-                self.inv_mass[3 * k],
-                self.inv_mass[3 * k + 1],
-                self.inv_mass[3 * k + 2],
-            ];
-            let vu = [v_free[3 * k], v_free[3 * k + 1], v_free[3 * k + 2]];
+            let up = ups[k];
+            let mu = inv_mass[k];
+            let vu = *tri(v_free, k);
             let mut w = [[0.0; 3]; 3];
             let mut b = [0.0; 3];
             let mut mup = [[0.0; 3]; 3];
@@ -291,13 +322,9 @@ impl ContactProblem {
                 }
             }
             if k > 0 {
-                let low = self.low[k];
-                let ml = [
-                    self.inv_mass[3 * k - 3],
-                    self.inv_mass[3 * k - 2],
-                    self.inv_mass[3 * k - 1],
-                ];
-                let vl = [v_free[3 * k - 3], v_free[3 * k - 2], v_free[3 * k - 1]];
+                let low = lows[k];
+                let ml = inv_mass[k - 1];
+                let vl = *tri(v_free, k - 1);
                 for a in 0..3 {
                     b[a] += dot3(&low[a], &vl);
                     let ml_a = [low[a][0] * ml[0], low[a][1] * ml[1], low[a][2] * ml[2]];
@@ -311,18 +338,18 @@ impl ContactProblem {
                     w[a][c] = w[c][a];
                 }
             }
-            self.wd[k] = w;
-            self.b[k] = b;
+            wds[k] = w;
+            bs[k] = b;
             // Coupling with joint k+1 through drum k.
             if k + 1 < n {
-                let ln = self.low[k + 1];
+                let ln = &lows[k + 1];
                 let mut o = [[0.0; 3]; 3];
                 for a in 0..3 {
                     for c in 0..3 {
                         o[a][c] = dot3(&mup[a], &ln[c]);
                     }
                 }
-                self.wo[k] = o;
+                wos[k] = o;
             }
         }
     }
@@ -355,15 +382,17 @@ impl ContactProblem {
 
     /// Relative velocities `(U_R, U_L, U_t)` of joint `k` on the problem's rows for velocities `v`.
     pub fn rows_rates(&self, k: usize, v: &[f64]) -> [f64; 3] {
-        let vu = [v[3 * k], v[3 * k + 1], v[3 * k + 2]];
+        let vu = *tri(v, k);
         let mut u = [0.0; 3];
+        let up = &self.up[k];
         for a in 0..3 {
-            u[a] = dot3(&self.up[k][a], &vu);
+            u[a] = dot3(&up[a], &vu);
         }
         if k > 0 {
-            let vl = [v[3 * k - 3], v[3 * k - 2], v[3 * k - 1]];
+            let vl = *tri(v, k - 1);
+            let low = &self.low[k];
             for a in 0..3 {
-                u[a] += dot3(&self.low[k][a], &vl);
+                u[a] += dot3(&low[a], &vl);
             }
         }
         u
@@ -372,21 +401,23 @@ impl ContactProblem {
     /// `v = v_free + M⁻¹ Hᵀ P` (`v` holds `v_free` on entry).
     pub fn apply(&self, v: &mut [f64]) {
         let n = self.n;
+        let (ps, ups, lows) = (&self.p[..n], &self.up[..n], &self.low[..n]);
+        let inv_mass = &self.inv_mass[..n];
         for k in 0..n {
-            let p = self.p[k];
+            let p = ps[k];
             if p == [0.0; 3] {
                 continue;
             }
-            let up = &self.up[k];
+            let up = &ups[k];
             for i in 0..3 {
                 let acc = up[0][i] * p[0] + up[1][i] * p[1] + up[2][i] * p[2];
-                v[3 * k + i] += self.inv_mass[3 * k + i] * acc;
+                tri_mut(v, k)[i] += inv_mass[k][i] * acc;
             }
             if k > 0 {
-                let low = &self.low[k];
+                let low = &lows[k];
                 for i in 0..3 {
                     let acc = low[0][i] * p[0] + low[1][i] * p[1] + low[2][i] * p[2];
-                    v[3 * k - 3 + i] += self.inv_mass[3 * k - 3 + i] * acc;
+                    tri_mut(v, k - 1)[i] += inv_mass[k - 1][i] * acc;
                 }
             }
         }

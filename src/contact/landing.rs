@@ -298,7 +298,7 @@ impl Stepper {
             let mut v = std::mem::take(&mut self.v_free);
             self.problem.apply(&mut v);
             let before = std::mem::replace(&mut self.v, v);
-            self.account_contact_work(&before, true);
+            self.account_contact_work(Some(&before), true);
             self.v_free = before;
         }
         // Landed ends that hold an impulse are put back onto their faces.

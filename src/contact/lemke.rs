@@ -66,9 +66,14 @@ impl Lemke {
             } else {
                 leaving - m
             };
+            // The largest magnitude (a comparison: f64::max's NaN handling is not needed, the
+            // running maximum is never NaN and a NaN entry is skipped as by f64::max).
             let mut amax = 0.0_f64;
             for i in 0..m {
-                amax = amax.max(t[i * cols + entering].abs());
+                let a = t[i * cols + entering].abs();
+                if a > amax {
+                    amax = a;
+                }
             }
             let eps = 1e-12 * amax;
             let mut best: Option<usize> = None;
@@ -139,21 +144,28 @@ impl Lemke {
         i < j
     }
 
+    /// Pivots the tableau on row `r`, column `e`: row by row with slices (the same operations
+    /// in the same order as indexed loops, which the compiler can run over several entries at
+    /// once: they are independent).
     fn pivot(t: &mut [f64], cols: usize, m: usize, r: usize, e: usize) {
+        let t = &mut t[..m * cols];
         let p = t[r * cols + e];
-        for c in 0..cols {
-            t[r * cols + c] /= p;
+        let (before, rest) = t.split_at_mut(r * cols);
+        let (row_r, after) = rest.split_at_mut(cols);
+        for x in row_r.iter_mut() {
+            *x /= p;
         }
-        for i in 0..m {
-            if i == r {
-                continue;
-            }
-            let f = t[i * cols + e];
+        let row_r = &*row_r;
+        for row in before
+            .chunks_exact_mut(cols)
+            .chain(after.chunks_exact_mut(cols))
+        {
+            let f = row[e];
             if f == 0.0 {
                 continue;
             }
-            for c in 0..cols {
-                t[i * cols + c] -= f * t[r * cols + c];
+            for (x, &y) in row.iter_mut().zip(row_r) {
+                *x -= f * y;
             }
         }
     }

@@ -28,6 +28,7 @@
 pub mod accounts;
 pub mod active_set;
 pub mod auto;
+mod blocks;
 pub mod drums;
 pub mod fallback;
 pub mod friction;

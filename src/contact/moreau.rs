@@ -166,6 +166,9 @@ pub struct Stepper {
     pub(super) carried: Vec<[bool; 2]>,
     pub(super) flags: Vec<[bool; 2]>,
     pub(super) shifts: Vec<[f64; 3]>,
+    /// Rates `(U_R, U_L, U_t)` of the velocities before a sub-step's problem on its rows (the
+    /// persistent contacts' law and the contact work read the same numbers).
+    pub(super) rates_before: Vec<[f64; 3]>,
     pub(super) landing: Vec<[bool; 2]>,
     /// Gap and normal rate of every end at the start of the sub-step (see `rates_fresh`).
     pub(super) start_rates: Vec<[[f64; 2]; 2]>,
@@ -239,6 +242,7 @@ impl Stepper {
             carried: vec![[false; 2]; n],
             flags: vec![[false; 2]; n],
             shifts: vec![[0.0; 3]; n],
+            rates_before: vec![[0.0; 3]; n],
             landing: vec![[false; 2]; n],
             start_rates: vec![[[0.0; 2]; 2]; n],
             rates_fresh: false,
@@ -393,19 +397,28 @@ impl Stepper {
         let a = motion.acceleration(self.t + theta * h);
         let a1 = motion.acceleration(self.t + h);
         // Free velocities and the geometry of the step's midpoint (θ).
-        for j in 0..n {
-            let f = self.loads(a, j);
-            let inv = [
-                1.0 / self.drums.mass(j),
-                1.0 / self.drums.mass(j),
-                1.0 / self.drums.inertia(j),
-            ];
-            for i in 0..3 {
-                self.v_free[3 * j + i] = self.v[3 * j + i] + h * inv[i] * f[i];
-                self.q_next[3 * j + i] = self.q[3 * j + i] + theta * h * self.v[3 * j + i];
+        {
+            // Per drum `[x, y, θ]`; the inverse masses are the problem's (the same quotients).
+            let inv_mass = &self.problem.inv_mass[..n];
+            let drums = self
+                .v
+                .chunks_exact(3)
+                .zip(self.q.chunks_exact(3))
+                .zip(self.v_free.chunks_exact_mut(3))
+                .zip(self.q_next.chunks_exact_mut(3));
+            for (j, (((v, q), v_free), q_next)) in drums.enumerate().take(n) {
+                let m = self.drums.mass(j);
+                let f = [-m * a, -m * self.options.gravity, 0.0];
+                let inv = inv_mass[j];
+                for i in 0..3 {
+                    v_free[i] = v[i] + h * inv[i] * f[i];
+                    q_next[i] = q[i] + theta * h * v[i];
+                }
             }
         }
-        self.drums.joints_into(&self.q_next, &mut self.predicted);
+        // Only its rows are read (`fill_contacts`).
+        self.drums
+            .joints_rows_into(&self.q_next, &mut self.predicted);
         // The index set: ends touching their face and ends predicted (linearly) to close.
         let eps = self.contact_gap;
         for k in 0..n {
@@ -435,6 +448,7 @@ impl Stepper {
         // (restitution zero).
         for k in 0..n {
             let ub = self.problem.rows_rates(k, &self.v);
+            self.rates_before[k] = ub;
             let mut shift = [0.0; 3];
             for c in 0..2 {
                 if self.options.persistent_restitution
@@ -476,17 +490,25 @@ impl Stepper {
         }
         // Positions, ground work, contact work.
         let mut work = 0.0;
-        for j in 0..n {
-            for i in 0..3 {
-                let vt = (1.0 - theta) * self.v[3 * j + i] + theta * v_new[3 * j + i];
-                self.q_next[3 * j + i] = self.q[3 * j + i] + h * vt;
+        {
+            let drums = self
+                .v
+                .chunks_exact(3)
+                .zip(v_new.chunks_exact(3))
+                .zip(self.q.chunks_exact(3))
+                .zip(self.q_next.chunks_exact_mut(3));
+            for (j, (((v, v_new), q), q_next)) in drums.enumerate().take(n) {
+                for i in 0..3 {
+                    let vt = (1.0 - theta) * v[i] + theta * v_new[i];
+                    q_next[i] = q[i] + h * vt;
+                }
+                let dx = q_next[0] - q[0];
+                work += -self.drums.mass(j) * a * dx;
             }
-            let dx = self.q_next[3 * j] - self.q[3 * j];
-            work += -self.drums.mass(j) * a * dx;
         }
         self.energy.ground_work += work;
         let before = std::mem::replace(&mut self.v, v_new);
-        self.account_contact_work(&before, false);
+        self.account_contact_work(None, false);
         self.v_free = before;
         std::mem::swap(&mut self.q, &mut self.q_next);
         // Ends that carried an impulse go back onto their faces.
