@@ -38,21 +38,28 @@ impl Column {
             };
             if theta != 0.0 {
                 // T_k(r) = R_{α+θ} r + R_α (p − R_θ p) + t
-                let (ct, st) = (theta.cos(), theta.sin());
+                let (st, ct) = theta.sin_cos();
                 let d = [
                     pref[0] - (ct * pref[0] - st * pref[1]),
                     pref[1] - (st * pref[0] + ct * pref[1]),
                 ];
                 t = [ca * d[0] - sa * d[1] + t[0], sa * d[0] + ca * d[1] + t[1]];
-                alpha += theta;
-                ca = alpha.cos();
-                sa = alpha.sin();
+                if alpha == 0.0 {
+                    // The first turned interface: `0 + θ` is `θ` exactly, and so are its sine
+                    // and cosine (one `sin_cos` fewer).
+                    alpha = theta;
+                    (sa, ca) = (st, ct);
+                } else {
+                    alpha += theta;
+                    (sa, ca) = alpha.sin_cos();
+                }
             }
             let centre = map([0.0, y + 0.5 * self.blocks[k].height], ca, sa, t);
             pose.right_pivots.push(right);
             pose.left_pivots.push(left);
             pose.centres.push(centre);
             pose.block_angles.push(alpha);
+            pose.block_sin_cos.push((sa, ca));
         }
         pose.update_sums(self);
     }
@@ -70,10 +77,15 @@ pub struct Pose {
     pub centres: Vec<[f64; 2]>,
     /// Absolute rotation of each block (sum of the interface angles below and at it).
     pub block_angles: Vec<f64>,
+    /// `block_angles[k].sin_cos()`, bit for bit (computed once, with the pose).
+    pub block_sin_cos: Vec<(f64, f64)>,
     pub(super) suffix_mass: Vec<f64>,
     pub(super) suffix_moment: Vec<[f64; 2]>,
-    pub(super) suffix_second: Vec<f64>,
     pub(super) suffix_inertia: Vec<f64>,
+    /// Centre of mass of the part above each interface, `suffix_moment / suffix_mass`.
+    pub(super) centre_above: Vec<[f64; 2]>,
+    /// `max(0, S2 − S0 |g|²)` above each interface (the spread term of [`Pose::mass_entry`]).
+    pub(super) spread: Vec<f64>,
 }
 
 impl Pose {
@@ -83,10 +95,12 @@ impl Pose {
             left_pivots: Vec::with_capacity(n),
             centres: Vec::with_capacity(n),
             block_angles: Vec::with_capacity(n),
+            block_sin_cos: Vec::with_capacity(n),
             suffix_mass: Vec::with_capacity(n),
             suffix_moment: Vec::with_capacity(n),
-            suffix_second: Vec::with_capacity(n),
             suffix_inertia: Vec::with_capacity(n),
+            centre_above: Vec::with_capacity(n),
+            spread: Vec::with_capacity(n),
         }
     }
 
@@ -95,9 +109,9 @@ impl Pose {
         self.left_pivots.clear();
         self.centres.clear();
         self.block_angles.clear();
+        self.block_sin_cos.clear();
         self.suffix_mass.clear();
         self.suffix_moment.clear();
-        self.suffix_second.clear();
         self.suffix_inertia.clear();
     }
 
@@ -105,8 +119,9 @@ impl Pose {
         let n = self.centres.len();
         self.suffix_mass.resize(n, 0.0);
         self.suffix_moment.resize(n, [0.0; 2]);
-        self.suffix_second.resize(n, 0.0);
         self.suffix_inertia.resize(n, 0.0);
+        self.centre_above.resize(n, [0.0; 2]);
+        self.spread.resize(n, 0.0);
         let (mut s0, mut s1, mut s2, mut si) = (0.0, [0.0, 0.0], 0.0, 0.0);
         for j in (0..n).rev() {
             let m = column.blocks[j].mass;
@@ -117,11 +132,14 @@ impl Pose {
             si += column.inertia[j];
             self.suffix_mass[j] = s0;
             self.suffix_moment[j] = s1;
-            self.suffix_second[j] = s2;
             self.suffix_inertia[j] = si;
+            let g = [s1[0] / s0, s1[1] / s0];
+            self.centre_above[j] = g;
+            self.spread[j] = (s2 - s0 * (g[0] * g[0] + g[1] * g[1])).max(0.0);
         }
     }
 
+    #[inline]
     pub(super) fn pivot(&self, a: usize) -> [f64; 2] {
         let n = self.centres.len();
         if a < n {
@@ -131,12 +149,20 @@ impl Pose {
         }
     }
 
+    /// The interface of DOF `a < 2n` (`a mod n` without an integer division).
+    #[inline]
+    pub(super) fn interface(&self, a: usize) -> usize {
+        let n = self.centres.len();
+        if a < n {
+            a
+        } else {
+            a - n
+        }
+    }
+
     /// Total mass of the part above interface `k` and its centre of mass.
+    #[inline]
     pub(crate) fn mass_above(&self, k: usize) -> (f64, [f64; 2]) {
-        let s0 = self.suffix_mass[k];
-        (
-            s0,
-            [self.suffix_moment[k][0] / s0, self.suffix_moment[k][1] / s0],
-        )
+        (self.suffix_mass[k], self.centre_above[k])
     }
 }
