@@ -18,14 +18,19 @@ impl Column {
     pub fn pose_into(&self, phi: &[f64], pose: &mut Pose) {
         let n = self.n_interfaces();
         assert_eq!(phi.len(), 2 * n, "phi must have 2n entries");
-        pose.clear();
+        pose.set_len(n);
+        let (right_pivots, left_pivots) = (&mut pose.right_pivots[..n], &mut pose.left_pivots[..n]);
+        let (centres, block_angles) = (&mut pose.centres[..n], &mut pose.block_angles[..n]);
+        let block_sin_cos = &mut pose.block_sin_cos[..n];
+        let (half_contact, base_height) = (&self.half_contact[..n], &self.base_height[..n]);
+        let (blocks, phi) = (&self.blocks[..n], &phi[..2 * n]);
         // Current rigid map of the block below: x ↦ R(alpha) x + t (the ground is the identity).
         let mut alpha = 0.0_f64;
         let (mut ca, mut sa) = (1.0_f64, 0.0_f64);
         let mut t = [0.0_f64, 0.0];
         for k in 0..n {
-            let b = self.half_contact[k];
-            let y = self.base_height[k];
+            let b = half_contact[k];
+            let y = base_height[k];
             let map = |p: [f64; 2], ca: f64, sa: f64, t: [f64; 2]| {
                 [ca * p[0] - sa * p[1] + t[0], sa * p[0] + ca * p[1] + t[1]]
             };
@@ -54,12 +59,12 @@ impl Column {
                     (sa, ca) = alpha.sin_cos();
                 }
             }
-            let centre = map([0.0, y + 0.5 * self.blocks[k].height], ca, sa, t);
-            pose.right_pivots.push(right);
-            pose.left_pivots.push(left);
-            pose.centres.push(centre);
-            pose.block_angles.push(alpha);
-            pose.block_sin_cos.push((sa, ca));
+            let centre = map([0.0, y + 0.5 * blocks[k].height], ca, sa, t);
+            right_pivots[k] = right;
+            left_pivots[k] = left;
+            centres[k] = centre;
+            block_angles[k] = alpha;
+            block_sin_cos[k] = (sa, ca);
         }
         pose.update_sums(self);
     }
@@ -104,38 +109,42 @@ impl Pose {
         }
     }
 
-    fn clear(&mut self) {
-        self.right_pivots.clear();
-        self.left_pivots.clear();
-        self.centres.clear();
-        self.block_angles.clear();
-        self.block_sin_cos.clear();
-        self.suffix_mass.clear();
-        self.suffix_moment.clear();
-        self.suffix_inertia.clear();
-    }
-
-    fn update_sums(&mut self, column: &Column) {
-        let n = self.centres.len();
+    /// Every vector of length `n` (their entries are then all overwritten; no allocation once
+    /// they have grown).
+    fn set_len(&mut self, n: usize) {
+        self.right_pivots.resize(n, [0.0; 2]);
+        self.left_pivots.resize(n, [0.0; 2]);
+        self.centres.resize(n, [0.0; 2]);
+        self.block_angles.resize(n, 0.0);
+        self.block_sin_cos.resize(n, (0.0, 1.0));
         self.suffix_mass.resize(n, 0.0);
         self.suffix_moment.resize(n, [0.0; 2]);
         self.suffix_inertia.resize(n, 0.0);
         self.centre_above.resize(n, [0.0; 2]);
         self.spread.resize(n, 0.0);
+    }
+
+    fn update_sums(&mut self, column: &Column) {
+        let n = self.centres.len();
+        let (centres, suffix_mass) = (&self.centres[..n], &mut self.suffix_mass[..n]);
+        let (suffix_moment, suffix_inertia) =
+            (&mut self.suffix_moment[..n], &mut self.suffix_inertia[..n]);
+        let (centre_above, spread) = (&mut self.centre_above[..n], &mut self.spread[..n]);
+        let (blocks, inertia) = (&column.blocks[..n], &column.inertia[..n]);
         let (mut s0, mut s1, mut s2, mut si) = (0.0, [0.0, 0.0], 0.0, 0.0);
         for j in (0..n).rev() {
-            let m = column.blocks[j].mass;
-            let c = self.centres[j];
+            let m = blocks[j].mass;
+            let c = centres[j];
             s0 += m;
             s1 = [s1[0] + m * c[0], s1[1] + m * c[1]];
             s2 += m * (c[0] * c[0] + c[1] * c[1]);
-            si += column.inertia[j];
-            self.suffix_mass[j] = s0;
-            self.suffix_moment[j] = s1;
-            self.suffix_inertia[j] = si;
+            si += inertia[j];
+            suffix_mass[j] = s0;
+            suffix_moment[j] = s1;
+            suffix_inertia[j] = si;
             let g = [s1[0] / s0, s1[1] / s0];
-            self.centre_above[j] = g;
-            self.spread[j] = (s2 - s0 * (g[0] * g[0] + g[1] * g[1])).max(0.0);
+            centre_above[j] = g;
+            spread[j] = (s2 - s0 * (g[0] * g[0] + g[1] * g[1])).max(0.0);
         }
     }
 
