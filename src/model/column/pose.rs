@@ -111,7 +111,11 @@ impl Pose {
 
     /// Every vector of length `n` (their entries are then all overwritten; no allocation once
     /// they have grown).
+    #[inline]
     fn set_len(&mut self, n: usize) {
+        if self.spread.len() == n && self.right_pivots.len() == n {
+            return;
+        }
         self.right_pivots.resize(n, [0.0; 2]);
         self.left_pivots.resize(n, [0.0; 2]);
         self.centres.resize(n, [0.0; 2]);
