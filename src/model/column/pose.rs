@@ -84,13 +84,21 @@ pub struct Pose {
     pub block_angles: Vec<f64>,
     /// `block_angles[k].sin_cos()`, bit for bit (computed once, with the pose).
     pub block_sin_cos: Vec<(f64, f64)>,
-    pub(super) suffix_mass: Vec<f64>,
-    pub(super) suffix_moment: Vec<[f64; 2]>,
-    pub(super) suffix_inertia: Vec<f64>,
-    /// Centre of mass of the part above each interface, `suffix_moment / suffix_mass`.
-    pub(super) centre_above: Vec<[f64; 2]>,
-    /// `max(0, S2 − S0 |g|²)` above each interface (the spread term of [`Pose::mass_entry`]).
-    pub(super) spread: Vec<f64>,
+    /// The sums over the part above each interface, in one record per interface (one bounds
+    /// check and one cache line per mass matrix entry).
+    pub(super) above: Vec<Above>,
+}
+
+/// The part above an interface: its mass `S0`, first moment `S1`, the blocks' own moments of
+/// inertia `ΣI`, its centre of mass `g = S1 / S0` and `max(0, S2 − S0 |g|²)` (`S2 = Σ m_j |c_j|²`,
+/// the spread term of [`Pose::mass_entry`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(super) struct Above {
+    pub mass: f64,
+    pub moment: [f64; 2],
+    pub inertia: f64,
+    pub centre: [f64; 2],
+    pub spread: f64,
 }
 
 impl Pose {
@@ -101,11 +109,7 @@ impl Pose {
             centres: Vec::with_capacity(n),
             block_angles: Vec::with_capacity(n),
             block_sin_cos: Vec::with_capacity(n),
-            suffix_mass: Vec::with_capacity(n),
-            suffix_moment: Vec::with_capacity(n),
-            suffix_inertia: Vec::with_capacity(n),
-            centre_above: Vec::with_capacity(n),
-            spread: Vec::with_capacity(n),
+            above: Vec::with_capacity(n),
         }
     }
 
@@ -113,7 +117,7 @@ impl Pose {
     /// they have grown).
     #[inline]
     fn set_len(&mut self, n: usize) {
-        if self.spread.len() == n && self.right_pivots.len() == n {
+        if self.above.len() == n && self.right_pivots.len() == n {
             return;
         }
         self.right_pivots.resize(n, [0.0; 2]);
@@ -121,19 +125,12 @@ impl Pose {
         self.centres.resize(n, [0.0; 2]);
         self.block_angles.resize(n, 0.0);
         self.block_sin_cos.resize(n, (0.0, 1.0));
-        self.suffix_mass.resize(n, 0.0);
-        self.suffix_moment.resize(n, [0.0; 2]);
-        self.suffix_inertia.resize(n, 0.0);
-        self.centre_above.resize(n, [0.0; 2]);
-        self.spread.resize(n, 0.0);
+        self.above.resize(n, Above::default());
     }
 
     fn update_sums(&mut self, column: &Column) {
         let n = self.centres.len();
-        let (centres, suffix_mass) = (&self.centres[..n], &mut self.suffix_mass[..n]);
-        let (suffix_moment, suffix_inertia) =
-            (&mut self.suffix_moment[..n], &mut self.suffix_inertia[..n]);
-        let (centre_above, spread) = (&mut self.centre_above[..n], &mut self.spread[..n]);
+        let (centres, above) = (&self.centres[..n], &mut self.above[..n]);
         let (blocks, inertia) = (&column.blocks[..n], &column.inertia[..n]);
         let (mut s0, mut s1, mut s2, mut si) = (0.0, [0.0, 0.0], 0.0, 0.0);
         for j in (0..n).rev() {
@@ -143,12 +140,14 @@ impl Pose {
             s1 = [s1[0] + m * c[0], s1[1] + m * c[1]];
             s2 += m * (c[0] * c[0] + c[1] * c[1]);
             si += inertia[j];
-            suffix_mass[j] = s0;
-            suffix_moment[j] = s1;
-            suffix_inertia[j] = si;
             let g = [s1[0] / s0, s1[1] / s0];
-            centre_above[j] = g;
-            spread[j] = (s2 - s0 * (g[0] * g[0] + g[1] * g[1])).max(0.0);
+            above[j] = Above {
+                mass: s0,
+                moment: s1,
+                inertia: si,
+                centre: g,
+                spread: (s2 - s0 * (g[0] * g[0] + g[1] * g[1])).max(0.0),
+            };
         }
     }
 
@@ -176,6 +175,7 @@ impl Pose {
     /// Total mass of the part above interface `k` and its centre of mass.
     #[inline]
     pub(crate) fn mass_above(&self, k: usize) -> (f64, [f64; 2]) {
-        (self.suffix_mass[k], self.centre_above[k])
+        let a = &self.above[k];
+        (a.mass, a.centre)
     }
 }
