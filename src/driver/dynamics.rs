@@ -135,19 +135,22 @@ impl<'a> ColumnDynamics<'a> {
         if self.exact {
             self.velocity_sums(statuses);
         }
-        for r in 0..k {
-            for c in r..k {
-                let v = self.pose.mass_entry(open[r], open[c]);
-                self.mk[r * k + c] = v;
-                self.mk[c * k + r] = v;
+        let (pose, mk, diag) = (&self.pose, &mut self.mk[..k * k], &mut self.diag);
+        for (r, &a) in open.iter().enumerate() {
+            for (c, &b) in open.iter().enumerate().skip(r) {
+                let v = pose.mass_entry(a, b);
+                mk[r * k + c] = v;
+                mk[c * k + r] = v;
             }
-            self.diag[open[r]] = self.mk[r * k + r];
-            let mut q = self.pose.load_entry(open[r], ag, self.g);
+            diag[a] = mk[r * k + r];
+        }
+        for (r, &a) in open.iter().enumerate() {
+            let mut q = self.pose.load_entry(a, ag, self.g);
             if self.exact {
-                q += self.velocity_entry(open[r]);
+                q += self.velocity_entry(a);
             }
             self.rhs[r] = q;
-            self.q[open[r]] = q;
+            self.q[a] = q;
         }
         let mk = &mut self.mk[..k * k];
         if !cholesky::factor(mk, k) {

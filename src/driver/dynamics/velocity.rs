@@ -28,15 +28,18 @@ impl ColumnDynamics<'_> {
 
     /// Suffix sums `Σ_{j≥k} m_j c_j × a_j` and `Σ_{j≥k} m_j a_j` of `cacc`.
     fn suffix_moments(&mut self) {
+        let n = self.n;
+        let (masses, centres) = (&self.masses[..n], &self.pose.centres[..n]);
+        let (cacc, sa, sb) = (&self.cacc[..n], &mut self.sa[..n], &mut self.sb[..n]);
         let (mut a, mut b) = (0.0, [0.0, 0.0]);
-        for j in (0..self.n).rev() {
-            let m = self.masses[j];
-            let c = self.pose.centres[j];
-            let ac = self.cacc[j];
+        for j in (0..n).rev() {
+            let m = masses[j];
+            let c = centres[j];
+            let ac = cacc[j];
             a += m * (c[0] * ac[1] - c[1] * ac[0]);
             b = [b[0] + m * ac[0], b[1] + m * ac[1]];
-            self.sa[j] = a;
-            self.sb[j] = b;
+            sa[j] = a;
+            sb[j] = b;
         }
     }
 }
@@ -52,25 +55,30 @@ pub(crate) fn centre_accelerations(
     out: &mut [[f64; 2]],
 ) {
     let n = statuses.len();
+    // Slices of length n up front: no bounds check in the loop.
+    let (rates_right, rates_left) = (&rates[..n], &rates[n..2 * n]);
+    let (right, left) = (&pose.right_pivots[..n], &pose.left_pivots[..n]);
+    let (centres, out) = (&pose.centres[..n], &mut out[..n]);
+    let acc = acc.map(|a| (&a[..n], &a[n..2 * n]));
     let (mut omega, mut eps) = (0.0_f64, 0.0_f64);
     let mut hinge = [0.0_f64, 0.0];
     let mut hinge_acc = [0.0_f64, 0.0];
     for j in 0..n {
         let p = if statuses[j] == Status::OpenLeft {
-            pose.left_pivots[j]
+            left[j]
         } else {
-            pose.right_pivots[j]
+            right[j]
         };
         let d = [p[0] - hinge[0], p[1] - hinge[1]];
         let acc_p = [
             hinge_acc[0] - eps * d[1] - omega * omega * d[0],
             hinge_acc[1] + eps * d[0] - omega * omega * d[1],
         ];
-        omega += rates[j] + rates[n + j];
-        if let Some(a) = acc {
-            eps += a[j] + a[n + j];
+        omega += rates_right[j] + rates_left[j];
+        if let Some((a_right, a_left)) = acc {
+            eps += a_right[j] + a_left[j];
         }
-        let c = pose.centres[j];
+        let c = centres[j];
         let r = [c[0] - p[0], c[1] - p[1]];
         out[j] = [
             acc_p[0] - eps * r[1] - omega * omega * r[0],
