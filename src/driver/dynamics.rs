@@ -10,6 +10,8 @@
 //!   (the centripetal force passes through the fixed pivot);
 //! - everything closed: the column is straight, `q = a_g Qa − g Qg` with constants.
 
+mod velocity;
+
 use super::chain::{ChainDynamics, Check, Equations, Rigid};
 use super::events::settle::lock_dof;
 use crate::error::RockingError;
@@ -20,6 +22,7 @@ use crate::model::configuration::Status;
 use crate::model::impact::kinetic_energy;
 use crate::model::opening::{reaction_margins, AllClosed, Configuration};
 use crate::{impact_model, opening_model};
+use velocity::centre_accelerations;
 
 pub(crate) struct ColumnDynamics<'a> {
     pub col: &'a Column,
@@ -40,7 +43,7 @@ pub(crate) struct ColumnDynamics<'a> {
     rates: Vec<f64>,
     mk: Vec<f64>,
     rhs: Vec<f64>,
-    vload: Vec<f64>,
+    diag: Vec<f64>,
     cacc: Vec<[f64; 2]>,
     sa: Vec<f64>,
     sb: Vec<[f64; 2]>,
@@ -111,7 +114,7 @@ impl<'a> ColumnDynamics<'a> {
             rates: vec![0.0; m],
             mk: vec![0.0; n * n],
             rhs: vec![0.0; n],
-            vload: vec![0.0; m],
+            diag: vec![0.0; m],
             cacc: vec![[0.0; 2]; n],
             sa: vec![0.0; n],
             sb: vec![[0.0; 2]; n],
@@ -125,56 +128,31 @@ impl<'a> ColumnDynamics<'a> {
         }
     }
 
-    /// Velocity terms of the exact equations into `vload` (uses `pose`, `rates`).
-    fn velocity_load(&mut self, statuses: &[Status]) {
-        let n = self.n;
-        centre_accelerations(&self.pose, statuses, &self.rates, None, &mut self.cacc);
-        self.suffix_moments();
-        for d in 0..2 * n {
-            let k = d % n;
-            let p = if d < n {
-                self.pose.right_pivots[k]
-            } else {
-                self.pose.left_pivots[k]
-            };
-            let b = self.sb[k];
-            self.vload[d] = -(self.sa[k] - (p[0] * b[1] - p[1] * b[0]));
-        }
-    }
-
-    /// Suffix sums `Σ_{j≥k} m_j c_j × a_j` and `Σ_{j≥k} m_j a_j` of `cacc`.
-    fn suffix_moments(&mut self) {
-        let (mut a, mut b) = (0.0, [0.0, 0.0]);
-        for j in (0..self.n).rev() {
-            let m = self.masses[j];
-            let c = self.pose.centres[j];
-            let ac = self.cacc[j];
-            a += m * (c[0] * ac[1] - c[1] * ac[0]);
-            b = [b[0] + m * ac[0], b[1] + m * ac[1]];
-            self.sa[j] = a;
-            self.sb[j] = b;
-        }
-    }
-
-    /// Solves `M_FF a_F = q_F` on the current `pose`; the result is in `rhs[..k]`.
+    /// Solves `M_FF a_F = q_F` on the current `pose`; the result is in `rhs[..k]`, and `q_F`
+    /// and the diagonal of `M_FF` are left in `q`, `diag` (full DOF vectors) for the check.
     fn solve_open(&mut self, open: &[usize], statuses: &[Status], ag: f64) -> bool {
         let k = open.len();
         if self.exact {
-            self.velocity_load(statuses);
+            self.velocity_sums(statuses);
         }
-        let mk = &mut self.mk[..k * k];
-        for r in 0..k {
-            for c in r..k {
-                let v = self.pose.mass_entry(open[r], open[c]);
+        let (pose, mk, diag) = (&self.pose, &mut self.mk[..k * k], &mut self.diag);
+        for (r, &a) in open.iter().enumerate() {
+            for (c, &b) in open.iter().enumerate().skip(r) {
+                let v = pose.mass_entry(a, b);
                 mk[r * k + c] = v;
                 mk[c * k + r] = v;
             }
-            let mut q = self.pose.load_entry(open[r], ag, self.g);
+            diag[a] = mk[r * k + r];
+        }
+        for (r, &a) in open.iter().enumerate() {
+            let mut q = self.pose.load_entry(a, ag, self.g);
             if self.exact {
-                q += self.vload[open[r]];
+                q += self.velocity_entry(a);
             }
             self.rhs[r] = q;
+            self.q[a] = q;
         }
+        let mk = &mut self.mk[..k * k];
         if !cholesky::factor(mk, k) {
             return false;
         }
@@ -213,18 +191,21 @@ impl<'a> ColumnDynamics<'a> {
         for (i, &d) in open.iter().enumerate() {
             self.acc_full[d] = self.rhs[i];
         }
-        // Loads and Jacobi scales of every generator (closed: both corners; open: its DOF),
-        // then the reaction test.
+        // Loads and Jacobi scales of every generator (closed: both corners; open: its DOF, whose
+        // load and `M_dd` `solve_open` computed), then the reaction test.
         for d in 0..2 * n {
             if !statuses.generator(d) {
                 continue;
             }
-            let mut q = self.pose.load_entry(d, ag, g);
-            if self.exact {
-                q += self.vload[d];
+            if statuses[if d < n { d } else { d - n }] == Status::Closed {
+                let mut q = self.pose.load_entry(d, ag, g);
+                if self.exact {
+                    q += self.velocity_entry(d);
+                }
+                self.q[d] = q;
+                self.diag[d] = self.pose.mass_entry(d, d);
             }
-            self.q[d] = q;
-            self.isq[d] = 1.0 / self.pose.mass_entry(d, d).sqrt();
+            self.isq[d] = 1.0 / self.diag[d].sqrt();
         }
         let pose = &self.pose;
         out.max_margin = reaction_margins(
@@ -255,12 +236,7 @@ impl<'a> ColumnDynamics<'a> {
                 self.pose.left_pivots[k]
             };
             let (_, c) = self.pose.mass_above(k);
-            let alpha = if k == 0 {
-                0.0
-            } else {
-                self.pose.block_angles[k - 1]
-            };
-            let (s, co) = alpha.sin_cos();
+            let (s, co) = self.below_sin_cos(k);
             let along = (c[0] - p[0]) * co + (c[1] - p[1]) * s;
             if -sigma * along > 0.0 {
                 out.tipped = Some(k);
@@ -295,12 +271,7 @@ impl<'a> ColumnDynamics<'a> {
                 let m = self.masses[k];
                 fx += m * (self.cacc[k][0] + ag);
                 fy += m * (self.cacc[k][1] + g);
-                let alpha = if k == 0 {
-                    0.0
-                } else {
-                    self.pose.block_angles[k - 1]
-                };
-                let (s, c) = alpha.sin_cos();
+                let (s, c) = self.below_sin_cos(k);
                 let v = fx * c + fy * s;
                 let nn = -fx * s + fy * c;
                 let scale = 1e-9 * self.rigid[k].s0 * g;
@@ -329,10 +300,20 @@ impl<'a> ColumnDynamics<'a> {
         self.col.load_vector_into(&self.pose, ag, self.g, load);
         if self.exact {
             self.rates.copy_from_slice(rates);
-            self.velocity_load(statuses);
-            for (l, v) in load.iter_mut().zip(&self.vload) {
-                *l += v;
+            self.velocity_sums(statuses);
+            for (d, l) in load.iter_mut().enumerate() {
+                *l += self.velocity_entry(d);
             }
+        }
+    }
+
+    /// `sin_cos` of the rotation of the block below interface `k` (the ground: 0), bit for bit.
+    #[inline]
+    fn below_sin_cos(&self, k: usize) -> (f64, f64) {
+        if k == 0 {
+            (0.0, 1.0)
+        } else {
+            self.pose.block_sin_cos[k - 1]
         }
     }
 }
@@ -560,45 +541,5 @@ impl ChainDynamics for ColumnDynamics<'_> {
 
     fn lock(&self, open: &[usize], dof: usize, rates: &mut [f64]) {
         lock_dof(&self.system_mass, 2 * self.n, open, dof, rates);
-    }
-}
-
-/// Accelerations of the block centres relative to the ground for DOF rates `rates` and DOF
-/// accelerations `acc` (`None`: zero, the centripetal part only). The active pivot of each
-/// interface is a material point of both blocks it joins.
-pub(crate) fn centre_accelerations(
-    pose: &Pose,
-    statuses: &[Status],
-    rates: &[f64],
-    acc: Option<&[f64]>,
-    out: &mut [[f64; 2]],
-) {
-    let n = statuses.len();
-    let (mut omega, mut eps) = (0.0_f64, 0.0_f64);
-    let mut hinge = [0.0_f64, 0.0];
-    let mut hinge_acc = [0.0_f64, 0.0];
-    for j in 0..n {
-        let p = if statuses[j] == Status::OpenLeft {
-            pose.left_pivots[j]
-        } else {
-            pose.right_pivots[j]
-        };
-        let d = [p[0] - hinge[0], p[1] - hinge[1]];
-        let acc_p = [
-            hinge_acc[0] - eps * d[1] - omega * omega * d[0],
-            hinge_acc[1] + eps * d[0] - omega * omega * d[1],
-        ];
-        omega += rates[j] + rates[n + j];
-        if let Some(a) = acc {
-            eps += a[j] + a[n + j];
-        }
-        let c = pose.centres[j];
-        let r = [c[0] - p[0], c[1] - p[1]];
-        out[j] = [
-            acc_p[0] - eps * r[1] - omega * omega * r[0],
-            acc_p[1] + eps * r[0] - omega * omega * r[1],
-        ];
-        hinge = p;
-        hinge_acc = acc_p;
     }
 }

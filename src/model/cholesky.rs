@@ -25,7 +25,71 @@ pub fn dot(a: &[f64], b: &[f64]) -> f64 {
 
 /// In-place lower Cholesky factor of the row-major `m × m` matrix `a` (only the lower triangle is
 /// read and written). Returns `false` when a pivot is not positive (not positive definite).
+///
+/// `m ≤ 3` (every step of a column of up to three blocks) is written out: the same operations in
+/// the same order as the loop, bit for bit (`dot` of an empty slice is `+0`, of one pair
+/// `0 + x y`; `a − (+0)` is `a`, and `0 + x y` is kept as it is, since it turns `−0` into `+0`).
+#[inline]
 pub fn factor(a: &mut [f64], m: usize) -> bool {
+    match m {
+        1 => {
+            let d = a[0];
+            if d.is_nan() || d <= 0.0 {
+                return false;
+            }
+            a[0] = d.sqrt();
+            true
+        }
+        2 => {
+            let a = &mut a[..4];
+            let d = a[0];
+            if d.is_nan() || d <= 0.0 {
+                return false;
+            }
+            let l00 = d.sqrt();
+            a[0] = l00;
+            let l10 = a[2] / l00;
+            a[2] = l10;
+            let d = a[3] - (0.0 + l10 * l10);
+            if d.is_nan() || d <= 0.0 {
+                return false;
+            }
+            a[3] = d.sqrt();
+            true
+        }
+        3 => {
+            let a = &mut a[..9];
+            let d = a[0];
+            if d.is_nan() || d <= 0.0 {
+                return false;
+            }
+            let l00 = d.sqrt();
+            a[0] = l00;
+            let l10 = a[3] / l00;
+            a[3] = l10;
+            let l20 = a[6] / l00;
+            a[6] = l20;
+            let d = a[4] - (0.0 + l10 * l10);
+            if d.is_nan() || d <= 0.0 {
+                return false;
+            }
+            let l11 = d.sqrt();
+            a[4] = l11;
+            let l21 = (a[7] - (0.0 + l20 * l10)) / l11;
+            a[7] = l21;
+            let d = a[8] - ((0.0 + l20 * l20) + l21 * l21);
+            if d.is_nan() || d <= 0.0 {
+                return false;
+            }
+            a[8] = d.sqrt();
+            true
+        }
+        _ => factor_loop(a, m),
+    }
+}
+
+/// [`factor`] for any `m`.
+fn factor_loop(a: &mut [f64], m: usize) -> bool {
     for j in 0..m {
         let row_j = &a[j * m..j * m + j];
         let d = a[j * m + j] - dot(row_j, row_j);
@@ -43,8 +107,40 @@ pub fn factor(a: &mut [f64], m: usize) -> bool {
     true
 }
 
-/// Solves `L Lᵀ x = b` in place with the factor of [`factor`].
+/// Solves `L Lᵀ x = b` in place with the factor of [`factor`]; `m ≤ 3` written out, bit for bit
+/// as the loop (see [`factor`]).
+#[inline]
 pub fn solve(l: &[f64], m: usize, x: &mut [f64]) {
+    match m {
+        1 => {
+            let l00 = l[0];
+            x[0] = x[0] / l00 / l00;
+        }
+        2 => {
+            let (l, x) = (&l[..4], &mut x[..2]);
+            let x0 = x[0] / l[0];
+            let x1 = (x[1] - (0.0 + l[2] * x0)) / l[3];
+            let x1 = x1 / l[3];
+            x[1] = x1;
+            x[0] = (x0 - l[2] * x1) / l[0];
+        }
+        3 => {
+            let (l, x) = (&l[..9], &mut x[..3]);
+            let x0 = x[0] / l[0];
+            let x1 = (x[1] - (0.0 + l[3] * x0)) / l[4];
+            let x2 = (x[2] - ((0.0 + l[6] * x0) + l[7] * x1)) / l[8];
+            let x2 = x2 / l[8];
+            let x1 = (x1 - l[7] * x2) / l[4];
+            x[2] = x2;
+            x[1] = x1;
+            x[0] = ((x0 - l[3] * x1) - l[6] * x2) / l[0];
+        }
+        _ => solve_loop(l, m, x),
+    }
+}
+
+/// [`solve`] for any `m`.
+fn solve_loop(l: &[f64], m: usize, x: &mut [f64]) {
     for i in 0..m {
         let s = x[i] - dot(&l[i * m..i * m + i], &x[..i]);
         x[i] = s / l[i * m + i];
@@ -89,6 +185,54 @@ mod tests {
         for i in 0..3 {
             let r: f64 = (0..3).map(|k| a[i * 3 + k] * x[k]).sum();
             assert!((r - b[i]).abs() < 1e-12);
+        }
+    }
+
+    /// The written-out `m ≤ 3` are the loops bit for bit, on random SPD, indefinite and signed-zero
+    /// inputs.
+    #[test]
+    fn small_sizes_are_the_loops_bit_for_bit() {
+        let mut seed = 0x9e37_79b9_7f4a_7c15_u64;
+        let mut next = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+        };
+        for case in 0..30_000 {
+            let m = 1 + case % 3;
+            let mut b = vec![0.0; m * m];
+            for v in b.iter_mut() {
+                *v = match case % 7 {
+                    0 => 0.0,
+                    1 => -0.0,
+                    _ => next(),
+                };
+            }
+            let mut a = vec![0.0; m * m];
+            for i in 0..m {
+                for j in 0..m {
+                    let s: f64 = (0..m).map(|k| b[i * m + k] * b[j * m + k]).sum();
+                    a[i * m + j] = if case % 5 == 0 { next() } else { s };
+                }
+                if case % 5 != 0 {
+                    a[i * m + i] += 1e-3 * (case % 4) as f64;
+                }
+            }
+            let (mut fast, mut slow) = (a.clone(), a.clone());
+            let ok = factor(&mut fast, m);
+            assert_eq!(ok, factor_loop(&mut slow, m));
+            let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            assert_eq!(bits(&fast), bits(&slow), "factor, m = {m}");
+            if ok {
+                let rhs: Vec<f64> = (0..m)
+                    .map(|i| if case % 11 == i { -0.0 } else { next() })
+                    .collect();
+                let (mut xf, mut xs) = (rhs.clone(), rhs);
+                solve(&fast, m, &mut xf);
+                solve_loop(&slow, m, &mut xs);
+                assert_eq!(bits(&xf), bits(&xs), "solve, m = {m}");
+            }
         }
     }
 

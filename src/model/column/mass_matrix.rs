@@ -12,27 +12,28 @@ impl Pose {
     /// The expanded form loses digits when the column is far from the pivots compared with its
     /// size, so the entry is evaluated as `Σ m_j (c_j − P_a)·(c_j − P_b)` about the centre of mass
     /// of the part above: `S0 (g − P_a)·(g − P_b) + (S2 − S0 |g|²) + ΣI`.
+    ///
+    /// `g` and the spread (clamped at 0) come with the pose (`Above`), computed there by the same
+    /// operations.
+    #[inline]
     pub(crate) fn mass_entry(&self, a: usize, b: usize) -> f64 {
-        let n = self.centres.len();
-        let k = (a % n).max(b % n);
+        let k = self.interface(a).max(self.interface(b));
         let pa = self.pivot(a);
         let pb = self.pivot(b);
-        let s0 = self.suffix_mass[k];
-        let s1 = self.suffix_moment[k];
-        let g = [s1[0] / s0, s1[1] / s0];
-        let spread = self.suffix_second[k] - s0 * (g[0] * g[0] + g[1] * g[1]);
+        let above = &self.above[k];
+        let (s0, g) = (above.mass, above.centre);
         s0 * ((g[0] - pa[0]) * (g[0] - pb[0]) + (g[1] - pa[1]) * (g[1] - pb[1]))
-            + spread.max(0.0)
-            + self.suffix_inertia[k]
+            + above.spread
+            + above.inertia
     }
 
     /// Entry `q[a]` of the load vector: `a_g (S1y − S0 P_ay) − g (S1x − S0 P_ax)` over `j ≥ k_a`.
+    #[inline]
     pub(crate) fn load_entry(&self, a: usize, ground_acc: f64, gravity: f64) -> f64 {
-        let n = self.centres.len();
-        let k = a % n;
+        let k = self.interface(a);
         let p = self.pivot(a);
-        let s0 = self.suffix_mass[k];
-        let s1 = self.suffix_moment[k];
+        let above = &self.above[k];
+        let (s0, s1) = (above.mass, above.moment);
         ground_acc * (s1[1] - s0 * p[1]) - gravity * (s1[0] - s0 * p[0])
     }
 }

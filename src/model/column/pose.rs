@@ -18,14 +18,19 @@ impl Column {
     pub fn pose_into(&self, phi: &[f64], pose: &mut Pose) {
         let n = self.n_interfaces();
         assert_eq!(phi.len(), 2 * n, "phi must have 2n entries");
-        pose.clear();
+        pose.set_len(n);
+        let (right_pivots, left_pivots) = (&mut pose.right_pivots[..n], &mut pose.left_pivots[..n]);
+        let (centres, block_angles) = (&mut pose.centres[..n], &mut pose.block_angles[..n]);
+        let block_sin_cos = &mut pose.block_sin_cos[..n];
+        let (half_contact, base_height) = (&self.half_contact[..n], &self.base_height[..n]);
+        let (blocks, phi) = (&self.blocks[..n], &phi[..2 * n]);
         // Current rigid map of the block below: x ↦ R(alpha) x + t (the ground is the identity).
         let mut alpha = 0.0_f64;
         let (mut ca, mut sa) = (1.0_f64, 0.0_f64);
         let mut t = [0.0_f64, 0.0];
         for k in 0..n {
-            let b = self.half_contact[k];
-            let y = self.base_height[k];
+            let b = half_contact[k];
+            let y = base_height[k];
             let map = |p: [f64; 2], ca: f64, sa: f64, t: [f64; 2]| {
                 [ca * p[0] - sa * p[1] + t[0], sa * p[0] + ca * p[1] + t[1]]
             };
@@ -38,21 +43,28 @@ impl Column {
             };
             if theta != 0.0 {
                 // T_k(r) = R_{α+θ} r + R_α (p − R_θ p) + t
-                let (ct, st) = (theta.cos(), theta.sin());
+                let (st, ct) = theta.sin_cos();
                 let d = [
                     pref[0] - (ct * pref[0] - st * pref[1]),
                     pref[1] - (st * pref[0] + ct * pref[1]),
                 ];
                 t = [ca * d[0] - sa * d[1] + t[0], sa * d[0] + ca * d[1] + t[1]];
-                alpha += theta;
-                ca = alpha.cos();
-                sa = alpha.sin();
+                if alpha == 0.0 {
+                    // The first turned interface: `0 + θ` is `θ` exactly, and so are its sine
+                    // and cosine (one `sin_cos` fewer).
+                    alpha = theta;
+                    (sa, ca) = (st, ct);
+                } else {
+                    alpha += theta;
+                    (sa, ca) = alpha.sin_cos();
+                }
             }
-            let centre = map([0.0, y + 0.5 * self.blocks[k].height], ca, sa, t);
-            pose.right_pivots.push(right);
-            pose.left_pivots.push(left);
-            pose.centres.push(centre);
-            pose.block_angles.push(alpha);
+            let centre = map([0.0, y + 0.5 * blocks[k].height], ca, sa, t);
+            right_pivots[k] = right;
+            left_pivots[k] = left;
+            centres[k] = centre;
+            block_angles[k] = alpha;
+            block_sin_cos[k] = (sa, ca);
         }
         pose.update_sums(self);
     }
@@ -70,10 +82,23 @@ pub struct Pose {
     pub centres: Vec<[f64; 2]>,
     /// Absolute rotation of each block (sum of the interface angles below and at it).
     pub block_angles: Vec<f64>,
-    pub(super) suffix_mass: Vec<f64>,
-    pub(super) suffix_moment: Vec<[f64; 2]>,
-    pub(super) suffix_second: Vec<f64>,
-    pub(super) suffix_inertia: Vec<f64>,
+    /// `block_angles[k].sin_cos()`, bit for bit (computed once, with the pose).
+    pub block_sin_cos: Vec<(f64, f64)>,
+    /// The sums over the part above each interface, in one record per interface (one bounds
+    /// check and one cache line per mass matrix entry).
+    pub(super) above: Vec<Above>,
+}
+
+/// The part above an interface: its mass `S0`, first moment `S1`, the blocks' own moments of
+/// inertia `ΣI`, its centre of mass `g = S1 / S0` and `max(0, S2 − S0 |g|²)` (`S2 = Σ m_j |c_j|²`,
+/// the spread term of [`Pose::mass_entry`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(super) struct Above {
+    pub mass: f64,
+    pub moment: [f64; 2],
+    pub inertia: f64,
+    pub centre: [f64; 2],
+    pub spread: f64,
 }
 
 impl Pose {
@@ -83,45 +108,50 @@ impl Pose {
             left_pivots: Vec::with_capacity(n),
             centres: Vec::with_capacity(n),
             block_angles: Vec::with_capacity(n),
-            suffix_mass: Vec::with_capacity(n),
-            suffix_moment: Vec::with_capacity(n),
-            suffix_second: Vec::with_capacity(n),
-            suffix_inertia: Vec::with_capacity(n),
+            block_sin_cos: Vec::with_capacity(n),
+            above: Vec::with_capacity(n),
         }
     }
 
-    fn clear(&mut self) {
-        self.right_pivots.clear();
-        self.left_pivots.clear();
-        self.centres.clear();
-        self.block_angles.clear();
-        self.suffix_mass.clear();
-        self.suffix_moment.clear();
-        self.suffix_second.clear();
-        self.suffix_inertia.clear();
+    /// Every vector of length `n` (their entries are then all overwritten; no allocation once
+    /// they have grown).
+    #[inline]
+    fn set_len(&mut self, n: usize) {
+        if self.above.len() == n && self.right_pivots.len() == n {
+            return;
+        }
+        self.right_pivots.resize(n, [0.0; 2]);
+        self.left_pivots.resize(n, [0.0; 2]);
+        self.centres.resize(n, [0.0; 2]);
+        self.block_angles.resize(n, 0.0);
+        self.block_sin_cos.resize(n, (0.0, 1.0));
+        self.above.resize(n, Above::default());
     }
 
     fn update_sums(&mut self, column: &Column) {
         let n = self.centres.len();
-        self.suffix_mass.resize(n, 0.0);
-        self.suffix_moment.resize(n, [0.0; 2]);
-        self.suffix_second.resize(n, 0.0);
-        self.suffix_inertia.resize(n, 0.0);
+        let (centres, above) = (&self.centres[..n], &mut self.above[..n]);
+        let (blocks, inertia) = (&column.blocks[..n], &column.inertia[..n]);
         let (mut s0, mut s1, mut s2, mut si) = (0.0, [0.0, 0.0], 0.0, 0.0);
         for j in (0..n).rev() {
-            let m = column.blocks[j].mass;
-            let c = self.centres[j];
+            let m = blocks[j].mass;
+            let c = centres[j];
             s0 += m;
             s1 = [s1[0] + m * c[0], s1[1] + m * c[1]];
             s2 += m * (c[0] * c[0] + c[1] * c[1]);
-            si += column.inertia[j];
-            self.suffix_mass[j] = s0;
-            self.suffix_moment[j] = s1;
-            self.suffix_second[j] = s2;
-            self.suffix_inertia[j] = si;
+            si += inertia[j];
+            let g = [s1[0] / s0, s1[1] / s0];
+            above[j] = Above {
+                mass: s0,
+                moment: s1,
+                inertia: si,
+                centre: g,
+                spread: (s2 - s0 * (g[0] * g[0] + g[1] * g[1])).max(0.0),
+            };
         }
     }
 
+    #[inline]
     pub(super) fn pivot(&self, a: usize) -> [f64; 2] {
         let n = self.centres.len();
         if a < n {
@@ -131,12 +161,21 @@ impl Pose {
         }
     }
 
+    /// The interface of DOF `a < 2n` (`a mod n` without an integer division).
+    #[inline]
+    pub(super) fn interface(&self, a: usize) -> usize {
+        let n = self.centres.len();
+        if a < n {
+            a
+        } else {
+            a - n
+        }
+    }
+
     /// Total mass of the part above interface `k` and its centre of mass.
+    #[inline]
     pub(crate) fn mass_above(&self, k: usize) -> (f64, [f64; 2]) {
-        let s0 = self.suffix_mass[k];
-        (
-            s0,
-            [self.suffix_moment[k][0] / s0, self.suffix_moment[k][1] / s0],
-        )
+        let a = &self.above[k];
+        (a.mass, a.centre)
     }
 }
