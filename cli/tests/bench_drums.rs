@@ -29,7 +29,7 @@ fn quick_suite_with(extra: &[&str]) -> Option<Vec<Vec<String>>> {
         "--csv".as_ref(),
         csv.as_os_str(),
     ];
-    args.extend(extra.iter().map(|a| std::ffi::OsStr::new(a)));
+    args.extend(extra.iter().map(std::ffi::OsStr::new));
     let run = common::run(args);
     assert!(run.ok, "{}", run.stderr);
     assert!(run.stdout.contains("How the runs ended"), "{}", run.stdout);
