@@ -227,6 +227,8 @@ mod tests {
         let s = parse(r#", "scheme": "auto", "on_sliding": "slide", "integrator": "rk4""#).unwrap();
         assert!(s.auto.is_some());
         assert_eq!(s.contact.unwrap().on_sliding, OnSliding::Slide);
+        let s = parse(r#", "scheme": "auto", "energy_tolerance": 1e-6"#).unwrap();
+        assert_eq!(s.contact.unwrap().scheme.energy_tolerance, Some(1e-6));
         let s = parse(r#", "scheme": "moreau", "friction": 0.4"#).unwrap();
         let c = s.contact.unwrap();
         assert_eq!(
@@ -271,6 +273,11 @@ mod tests {
                 "initial_angles",
             ),
             (r#", "friction": "much""#, "friction"),
+            (r#", "energy_tolerance": 1e-6"#, "energy_tolerance"),
+            (
+                r#", "on_sliding": "slide", "energy_tolerance": 0"#,
+                "energy_tolerance",
+            ),
         ] {
             let e = parse(extra)
                 .err()
