@@ -42,6 +42,11 @@ pub struct StepCounters {
     pub impact_iterations: u64,
     /// Problems whose last fallback (nonsmooth Gauss–Seidel) stopped at its cap of sweeps.
     pub inexact: u64,
+    /// Steps (or sub-steps) of the error control ([`super::refine`]) redone as two halves.
+    pub refined: u64,
+    /// Steps of the error control kept at its shortest length with their energy error still
+    /// above the tolerance.
+    pub refine_floor: u64,
 }
 
 impl Stepper {

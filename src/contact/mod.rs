@@ -19,7 +19,8 @@
 //!   Gauss–Seidel iteration ([`fallback`]) as the fallbacks.
 //! - [`moreau`]: one time step; [`landing`]: impacts located inside it and the consecutive-impact
 //!   law; [`projection`]: the positions projected back onto the contacts; [`rest`]: the step of a
-//!   column at rest; [`accounts`]: the energy accounts and work counters.
+//!   column at rest; [`accounts`]: the energy accounts and work counters; [`refine`]: the opt-in
+//!   error control (a step whose energy error is too large redone as two halves).
 //! - [`simulation`]: a whole run: joint modes, events, stops, slips, energy; its options are
 //!   [`options`].
 //! - [`auto`]: the automatic scheme: the event-driven driver where events are few, this scheme
@@ -38,5 +39,6 @@ pub mod lemke;
 pub mod moreau;
 pub mod options;
 pub mod projection;
+pub mod refine;
 pub mod rest;
 pub mod simulation;

@@ -72,6 +72,9 @@ pub struct SchemeOptions {
     pub project: bool,
     /// Acceleration of gravity (m/s²).
     pub gravity: f64,
+    /// Opt-in error control ([`super::refine`]): a step whose own energy error exceeds this
+    /// fraction of the run's energy scale is redone as two half steps. `None`: off.
+    pub energy_tolerance: Option<f64>,
 }
 
 impl Default for SchemeOptions {
@@ -83,6 +86,7 @@ impl Default for SchemeOptions {
             persistent_restitution: true,
             project: true,
             gravity: crate::model::column::GRAVITY,
+            energy_tolerance: None,
         }
     }
 }

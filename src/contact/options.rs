@@ -170,6 +170,15 @@ impl DrumOptions {
         if !(s.gravity.is_finite() && s.gravity > 0.0) {
             return Err(bad("scheme.gravity", s.gravity, "must be finite and > 0"));
         }
+        if let Some(tol) = s.energy_tolerance {
+            if !(tol.is_finite() && tol > 0.0) {
+                return Err(bad(
+                    "scheme.energy_tolerance",
+                    tol,
+                    "must be finite and > 0",
+                ));
+            }
+        }
         if self.record.history_every == Some(0) {
             return Err(bad("record.history_every", 0, "must be >= 1"));
         }

@@ -7,6 +7,7 @@ use std::fmt;
 
 use super::moreau::{EnergyAccounts, StepCounters, StepError, Stepper};
 pub use super::options::{DrumOptionError, DrumOptions, DrumRecording, OnSliding, OnTension};
+use super::refine::Refiner;
 use crate::ground::GroundMotion;
 use crate::model::column::Column;
 
@@ -337,6 +338,8 @@ pub(crate) struct MoreauRun {
     kinetic0: f64,
     /// Time of the last event pushed (s).
     pub last_event: f64,
+    /// The error control, when asked for.
+    refiner: Option<Refiner>,
 }
 
 impl MoreauRun {
@@ -396,7 +399,12 @@ impl MoreauRun {
             potential0,
             kinetic0,
             last_event: 0.0,
+            refiner: None,
         };
+        run.refiner = options
+            .scheme
+            .energy_tolerance
+            .map(|tol| Refiner::new(&run.st, tol));
         run.sample();
         run
     }
@@ -451,7 +459,11 @@ impl MoreauRun {
                 (i + 1) as f64 * options.dt
             };
             let h = t_target - st.t;
-            match st.step(h, motion) {
+            let result = match self.refiner.as_mut() {
+                None => st.step(h, motion),
+                Some(r) => r.step(st, h, motion, self.potential0, self.kinetic0),
+            };
+            match result {
                 Ok(()) => {}
                 Err(StepError::SlidOff(k)) => {
                     stop = Some(DrumStop::SlidOff { joint: k });

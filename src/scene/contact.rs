@@ -7,6 +7,7 @@
 //! "on_tension": "fly",        ("stop", the default: it stops at the first tensile joint)
 //! "scheme": "moreau"          ("event_driven", "moreau" or "auto"; default: "moreau" when a
 //!                              joint may slide or fly, "event_driven" otherwise)
+//! "energy_tolerance": 1e-6    (moreau, auto: the error control, `crate::contact::refine`)
 //! ```
 //! `"auto"`: the event-driven driver where events are few, Moreau–Jean where they crowd
 //! (`crate::contact::auto`, docs/multidrum.md "The automatic scheme"); the driver's own settings
@@ -87,6 +88,13 @@ pub(super) fn scheme(spec: &SceneSpec) -> Result<SchemeChoice, SceneError> {
         }
     };
     if !moreau {
+        if spec.energy_tolerance.is_some() {
+            return Err(err(
+                "energy_tolerance",
+                "applies to schemes \"moreau\" and \"auto\" (the error control of the time \
+                 stepping)",
+            ));
+        }
         if let Some(FrictionSpec::PerJoint(_)) = spec.friction {
             return Err(err(
                 "friction",
@@ -149,6 +157,7 @@ pub(super) fn drum_options(spec: &SceneSpec, column: &Column) -> Result<DrumOpti
         scheme: SchemeOptions {
             n_impacts: spec.impacts,
             gravity: spec.gravity.unwrap_or(GRAVITY),
+            energy_tolerance: spec.energy_tolerance,
             ..SchemeOptions::default()
         },
         continue_until_fallen: spec.continue_until_fallen,
@@ -164,6 +173,7 @@ pub(super) fn drum_options(spec: &SceneSpec, column: &Column) -> Result<DrumOpti
             "joint_friction" => "friction",
             "scheme.n_impacts" => "impacts",
             "scheme.gravity" => "gravity",
+            "scheme.energy_tolerance" => "energy_tolerance",
             "record.history_every" => "output.every",
             f => f,
         };
@@ -217,6 +227,8 @@ mod tests {
         let s = parse(r#", "scheme": "auto", "on_sliding": "slide", "integrator": "rk4""#).unwrap();
         assert!(s.auto.is_some());
         assert_eq!(s.contact.unwrap().on_sliding, OnSliding::Slide);
+        let s = parse(r#", "scheme": "auto", "energy_tolerance": 1e-6"#).unwrap();
+        assert_eq!(s.contact.unwrap().scheme.energy_tolerance, Some(1e-6));
         let s = parse(r#", "scheme": "moreau", "friction": 0.4"#).unwrap();
         let c = s.contact.unwrap();
         assert_eq!(
@@ -261,6 +273,11 @@ mod tests {
                 "initial_angles",
             ),
             (r#", "friction": "much""#, "friction"),
+            (r#", "energy_tolerance": 1e-6"#, "energy_tolerance"),
+            (
+                r#", "on_sliding": "slide", "energy_tolerance": 0"#,
+                "energy_tolerance",
+            ),
         ] {
             let e = parse(extra)
                 .err()

@@ -146,6 +146,11 @@ pub struct SceneSpec {
     pub scheme: Option<String>,
     #[serde(default)]
     pub gravity: Option<f64>,
+    /// Schemes "moreau" and "auto": the error control of the time stepping (a step whose energy
+    /// error exceeds this fraction of the run's energy scale is redone as two halves; default
+    /// none, `crate::contact::refine`).
+    #[serde(default)]
+    pub energy_tolerance: Option<f64>,
     /// Exact Lagrangian velocity terms (default false: thesis Eq. 6).
     #[serde(default)]
     pub exact_velocity_terms: bool,

@@ -58,6 +58,11 @@ pub struct DrumsBenchArgs {
     /// Run every case again at dt / 2 and report the spread.
     #[arg(long)]
     pub halve: bool,
+    /// The scheme's error control: a step whose energy error exceeds this fraction of the run's
+    /// energy scale is redone as two halves (down to dt / 64); the CSV gains the columns
+    /// `refined,refine_floor`.
+    #[arg(long)]
+    pub energy_tol: Option<f64>,
     /// Threads (default: every core).
     #[arg(long, value_parser = count)]
     pub threads: Option<usize>,
@@ -111,10 +116,12 @@ struct Run {
     slips: usize,
     lift_offs: usize,
     fallbacks: u64,
+    refined: u64,
+    refine_floor: u64,
     cpu: f64,
 }
 
-fn run_case(case: &Case, rec: &Record, dt: f64) -> Result<Run, String> {
+fn run_case(case: &Case, rec: &Record, dt: f64, tol: Option<f64>) -> Result<Run, String> {
     let col = Column::new(
         (0..case.n)
             .map(|_| Block::rectangle(case.w, case.h, 2500.0 * case.w * case.h))
@@ -124,10 +131,11 @@ fn run_case(case: &Case, rec: &Record, dt: f64) -> Result<Run, String> {
     let motion = Excitation::record(rec.scaled_to_pga(case.pga).map_err(|e| e.to_string())?)
         .map_err(|e| e.to_string())?;
     let duration = rec.duration();
-    let opts = DrumOptions {
+    let mut opts = DrumOptions {
         dt,
         ..DrumOptions::quiet(duration, case.mu, 2)
     };
+    opts.scheme.energy_tolerance = tol;
     let t0 = Instant::now();
     let out = simulate(&col, &motion, &opts, None).map_err(|e| e.to_string())?;
     let cpu = t0.elapsed().as_secs_f64();
@@ -150,6 +158,8 @@ fn run_case(case: &Case, rec: &Record, dt: f64) -> Result<Run, String> {
         slips: out.event_counts[2],
         lift_offs: out.event_counts[4],
         fallbacks: out.counters.fallbacks,
+        refined: out.counters.refined,
+        refine_floor: out.counters.refine_floor,
         cpu,
     })
 }
@@ -173,6 +183,11 @@ pub fn run(args: &DrumsBenchArgs) -> Result<(), String> {
     }
     if !(args.dt.is_finite() && args.dt > 0.0) {
         return Err(format!("--dt: {}: must be a number > 0", args.dt));
+    }
+    if let Some(tol) = args.energy_tol {
+        if !(tol.is_finite() && tol > 0.0) {
+            return Err(format!("--energy-tol: {tol}: must be a number > 0"));
+        }
     }
     let mut files: Vec<PathBuf> = std::fs::read_dir(&args.records)
         .map_err(|e| format!("--records {}: {e}", args.records.display()))?
@@ -247,7 +262,7 @@ pub fn run(args: &DrumsBenchArgs) -> Result<(), String> {
         .map(|c| {
             let runs = steps
                 .iter()
-                .map(|&d| run_case(c, &records[c.record], d))
+                .map(|&d| run_case(c, &records[c.record], d, args.energy_tol))
                 .collect::<Result<Vec<Run>, String>>();
             bar.inc(1);
             runs
@@ -255,13 +270,25 @@ pub fn run(args: &DrumsBenchArgs) -> Result<(), String> {
         .collect::<Result<Vec<Vec<Run>>, String>>()?;
     let wall = wall.elapsed().as_secs_f64();
     bar.finish_and_clear();
-    let text = report(&results, &files, wall, rayon::current_num_threads());
+    let mut text = report(&results, &files, wall, rayon::current_num_threads());
+    if let Some(tol) = args.energy_tol {
+        let runs = results.iter().flatten();
+        let (refined, floor) = runs.fold((0, 0), |(a, b), r| (a + r.refined, b + r.refine_floor));
+        let _ = writeln!(
+            text,
+            "\nError control (energy tolerance {tol:e} of the run's scale per step): {refined} \
+             steps redone as two halves, {floor} kept at dt / 64 above the tolerance."
+        );
+    }
     print!("{text}");
     if let Some(out) = &args.out {
         write_atomic(out, text.as_bytes())?;
     }
     if let Some(p) = &args.csv {
-        write_atomic(p, csv(&results, &files).as_bytes())?;
+        write_atomic(
+            p,
+            csv(&results, &files, args.energy_tol.is_some()).as_bytes(),
+        )?;
     }
     Ok(())
 }
@@ -398,14 +425,19 @@ fn file_stem(files: &[PathBuf], i: usize) -> String {
         .unwrap_or_default()
 }
 
-fn csv(results: &[Vec<Run>], files: &[PathBuf]) -> String {
+fn csv(results: &[Vec<Run>], files: &[PathBuf], refine: bool) -> String {
     let mut s = String::from(
         "record,drums,w,h,pga,mu,dt,stop,t_end,duration,overturned,peak_rotation,peak_top,\
-         residual_slip,peak_slip,energy_error,closure,impacts,slip_starts,lift_offs,fallbacks,cpu_s\n",
+         residual_slip,peak_slip,energy_error,closure,impacts,slip_starts,lift_offs,fallbacks,cpu_s",
     );
+    s.push_str(if refine {
+        ",refined,refine_floor\n"
+    } else {
+        "\n"
+    });
     for r in results.iter().flatten() {
         let c = &r.case;
-        let _ = writeln!(
+        let _ = write!(
             s,
             "{},{},{},{},{},{},{},{},{:.4},{:.4},{},{:.6},{:.6},{:.6},{:.6},{:.3e},{:.3e},{},{},{},{},{:.4}",
             file_stem(files, c.record),
@@ -431,6 +463,10 @@ fn csv(results: &[Vec<Run>], files: &[PathBuf]) -> String {
             r.fallbacks,
             r.cpu
         );
+        if refine {
+            let _ = write!(s, ",{},{}", r.refined, r.refine_floor);
+        }
+        s.push('\n');
     }
     s
 }
