@@ -7,7 +7,7 @@
 #   SICONOS=0 sh bench/siconos/sweep.sh  # the library's sweeps only (seconds), then the tables
 #   FINE=1 sh bench/siconos/sweep.sh     # also both codes at 0.125 ms on ten drums (+30-40 min)
 #   OTHER=1 sh bench/siconos/sweep.sh    # also the other columns at 1 ms and the peer with its
-#                                        # gaps linearised at the midpoint (+25-40 min)
+#                                        # gaps linearised at the midpoint (+60-90 min)
 set -e
 B=bench/siconos
 PY=/usr/bin/python3
@@ -19,7 +19,7 @@ if [ "${SICONOS:-1}" != 0 ]; then
         nice -n 5 $PY $B/compare.py --quick --cases 2 --dt 0.000125 --out $B/results_dt_0125.json
     fi
     if [ "${OTHER:-0}" = 1 ]; then
-        nice -n 5 $PY $B/compare.py --quick --cases 1,3,4 --out $B/results_other.json
+        nice -n 5 $PY $B/compare.py --quick --cases 1,3,4,5 --out $B/results_other.json
         nice -n 5 $PY $B/compare.py --quick --cases 2 --only siconos --dt 0.001,0.0005 \
             --siconos-args '--linearise mid' --out $B/results_mid.json
     fi
