@@ -1,4 +1,4 @@
-//! The automatic scheme (issue 11; docs/multidrum.md, "The automatic scheme"): a run starts in
+//! The automatic scheme (issue 11; docs/auto-scheme.md): a run starts in
 //! the thesis's event-driven driver ([`crate::driver`]) and is handed over to Moreau–Jean time
 //! stepping ([`super::moreau`]) where contacts crowd — more events within a window of simulated
 //! time than the rule allows, or a slip, tension or the event cap, which the driver can only stop
@@ -30,7 +30,7 @@ pub struct AutoOptions {
 }
 
 impl AutoOptions {
-    /// The defaults for a step `dt` (docs/multidrum.md, "The automatic scheme"): more events
+    /// The defaults for a step `dt` (docs/auto-scheme.md): more events
     /// within 0.5 s than half its steps hands over (250 at dt = 1 ms); 0.5 s without an event,
     /// and slips within 1e-4 of the half-width, hand back.
     pub fn for_step(dt: f64) -> AutoOptions {

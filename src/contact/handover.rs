@@ -1,7 +1,7 @@
 //! The state handed between the event-driven driver (interface coordinates: per joint a status
 //! and the angle and rate of its open DOF; the thesis's) and the Moreau–Jean scheme (natural
 //! coordinates `x, y, θ` per drum), and the rule that says when a column is calm enough to be
-//! handed back (docs/multidrum.md, "The automatic scheme").
+//! handed back (docs/auto-scheme.md).
 
 use super::moreau::Stepper;
 use super::simulation::JointMode;

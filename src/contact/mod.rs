@@ -22,7 +22,7 @@
 //!   column at rest; [`accounts`]: the energy accounts and work counters; [`refine`]: the opt-in
 //!   error control (a step whose energy error is too large redone as two halves).
 //! - [`simulation`]: a whole run: joint modes, events, stops, slips, energy; its options are
-//!   [`options`].
+//!   [`options`], what it gives back (events, stops, energy, history, outcome) [`outcome`].
 //! - [`auto`]: the automatic scheme: the event-driven driver where events are few, this scheme
 //!   where they crowd, the state handed between them (`handover`).
 
@@ -38,6 +38,7 @@ pub mod landing;
 pub mod lemke;
 pub mod moreau;
 pub mod options;
+pub mod outcome;
 pub mod projection;
 pub mod refine;
 pub mod rest;

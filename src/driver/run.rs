@@ -26,7 +26,7 @@ pub(crate) fn run<C: ChainDynamics>(
 pub(crate) type SegmentEnd = (Outcome, State, bool);
 
 /// [`run`] from `start` (`None`: released at rest at time 0, as [`run`]) until a stop or, with
-/// `crowding`, until the events crowd (docs/multidrum.md, "The automatic scheme"). Without
+/// `crowding`, until the events crowd (docs/auto-scheme.md). Without
 /// `start` and `crowding` the same run as [`run`], bit for bit.
 pub(crate) fn run_segment<C: ChainDynamics>(
     mut problem: Problem<'_, C>,

@@ -1,5 +1,5 @@
 //! The event-driven side of the automatic scheme (`crate::contact::auto`,
-//! docs/multidrum.md "The automatic scheme"): a run of the driver that starts from a state handed
+//! docs/auto-scheme.md): a run of the driver that starts from a state handed
 //! over by the Moreau–Jean scheme, and stops, handing the state over, when events crowd or when
 //! it meets what only the contact scheme can carry on (a slip, tension, the event cap).
 

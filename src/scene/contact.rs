@@ -10,7 +10,7 @@
 //! "energy_tolerance": 1e-6    (moreau, auto: the error control, `crate::contact::refine`)
 //! ```
 //! `"auto"`: the event-driven driver where events are few, Moreau–Jean where they crowd
-//! (`crate::contact::auto`, docs/multidrum.md "The automatic scheme"); the driver's own settings
+//! (`crate::contact::auto`, docs/auto-scheme.md); the driver's own settings
 //! (integrator, locator, solver, exact velocity terms) apply to its parts.
 //! With the defaults a scene runs on the event-driven driver exactly as before these fields.
 
