@@ -102,12 +102,12 @@ pub enum DrumStop {
         /// Joint.
         joint: usize,
     },
-    /// A joint slipped, with [`OnSliding::Stop`].
+    /// A joint slipped, with [`OnSliding::Stop`](super::options::OnSliding::Stop).
     Sliding {
         /// Joint.
         joint: usize,
     },
-    /// A joint lifted off, with [`OnTension::Stop`].
+    /// A joint lifted off, with [`OnTension::Stop`](super::options::OnTension::Stop).
     Tension {
         /// Joint.
         joint: usize,
