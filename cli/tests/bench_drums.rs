@@ -62,6 +62,14 @@ fn every_run_ends_at_the_end_of_the_record_or_by_overturning() {
     }
 }
 
+/// The runs whose energy residual (column 15) exceeds `limit`, for the message.
+fn energy_above(rows: &[Vec<String>], limit: f64) -> Vec<String> {
+    rows.iter()
+        .filter(|r| r[15].parse::<f64>().unwrap().abs() > limit)
+        .map(|r| format!("{} {} drums {}x{}: {}", r[0], r[1], r[2], r[3], r[15]))
+        .collect()
+}
+
 /// The issue's target: ground work = ΔV + ΔT + impacts + friction within 0.1 % on every run.
 /// Not met yet (docs/multidrum.md, "Energy"): the scheme's error — ends caught within a step,
 /// the projections after slow arrivals — is first order in dt and reaches 2 % on some runs of
@@ -70,11 +78,7 @@ fn every_run_ends_at_the_end_of_the_record_or_by_overturning() {
 #[ignore = "open target of issue 11: energy residual 0.1 % on every run (see docs/multidrum.md)"]
 fn energy_residual_is_within_a_thousandth_on_every_run() {
     let Some(rows) = quick_suite() else { return };
-    let bad: Vec<String> = rows
-        .iter()
-        .filter(|r| r[15].parse::<f64>().unwrap().abs() > 1e-3)
-        .map(|r| format!("{} {} drums {}x{}: {}", r[0], r[1], r[2], r[3], r[15]))
-        .collect();
+    let bad = energy_above(&rows, 1e-3);
     assert!(bad.is_empty(), "{} runs above 1e-3: {bad:#?}", bad.len());
 }
 
@@ -87,11 +91,7 @@ fn energy_residual_is_within_a_thousandth_with_the_error_control() {
     let Some(rows) = quick_suite_with(&["--energy-tol", "1e-6"]) else {
         return;
     };
-    let bad: Vec<String> = rows
-        .iter()
-        .filter(|r| r[15].parse::<f64>().unwrap().abs() > 1e-3)
-        .map(|r| format!("{} {} drums {}x{}: {}", r[0], r[1], r[2], r[3], r[15]))
-        .collect();
+    let bad = energy_above(&rows, 1e-3);
     assert!(bad.is_empty(), "{} runs above 1e-3: {bad:#?}", bad.len());
     for r in &rows {
         let closure: f64 = r[16].parse().unwrap();
