@@ -76,7 +76,8 @@ fn reduce_entry_point_reproduces_appendix_c() {
         .collect();
     let mut rm = [0.0; 4];
     let mut rl = [0.0; 2];
-    let code = unsafe {
+    // `rocking_reduce` of the 12 nodal DOFs onto 2 interface DOFs, into `rm` and `rl`.
+    let reduce = |nodal: &[f64], rm: &mut [f64; 4], rl: &mut [f64; 2]| unsafe {
         rocking_reduce(
             12,
             2,
@@ -87,23 +88,14 @@ fn reduce_entry_point_reproduces_appendix_c() {
             rl.as_mut_ptr(),
         )
     };
+    let code = reduce(&nodal, &mut rm, &mut rl);
     assert_eq!(code, 0, "{}", last_error());
     let r3 = |x: f64| (x * 1000.0).round() / 1000.0;
     assert_eq!([r3(rm[0]), r3(rm[1]), r3(rm[3])], [43.333, 13.667, 5.667]);
     assert_eq!([r3(rl[0]), r3(rl[1])], [1.810, 2.905]);
     // Not symmetric: refused, outputs untouched.
     nodal[1] = 0.5;
-    let code = unsafe {
-        rocking_reduce(
-            12,
-            2,
-            nodal.as_ptr(),
-            b.as_ptr(),
-            p.as_ptr(),
-            rm.as_mut_ptr(),
-            rl.as_mut_ptr(),
-        )
-    };
+    let code = reduce(&nodal, &mut rm, &mut rl);
     assert_eq!(code, ROCKING_ERR_NOT_SYMMETRIC);
     assert_eq!(r3(rm[0]), 43.333);
 }
