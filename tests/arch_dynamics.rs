@@ -188,15 +188,7 @@ fn run(rate0: f64, amp: f64, tp: f64, dt: f64, t_end: f64, check_every: usize) -
     let lp = Loop::new();
     let mut eq = LoopEquations::new(&lp.chain, GRAVITY);
     let dj = FourHinge::new();
-    // Initial rates of the hinges from the linkage's velocity analysis.
-    let l0 = dj.position(0.0, 0.0);
-    let (w, _) = dj.jacobian(&l0);
-    let mut v = [
-        rate0 * w[0],
-        rate0 * (w[1] - w[0]),
-        rate0 * (w[2] - w[1]),
-        -rate0 * w[2],
-    ];
+    let mut v = dj.closed_hinge_rates(rate0);
     let mut x = [0.0; 4];
     let (mut th, mut om, mut guess) = (0.0, rate0, 0.0);
     let mut t = 0.0;
@@ -327,14 +319,8 @@ fn dejong_table() {
 fn closure_impact(rate0: f64) -> (f64, f64, Vec<(usize, i8)>) {
     let lp = Loop::new();
     let dj = FourHinge::new();
-    let (w, _) = dj.jacobian(&dj.position(0.0, 0.0));
     // Swinging back at the closed pose: the opening rates reversed.
-    let h = [
-        rate0 * w[0],
-        rate0 * (w[1] - w[0]),
-        rate0 * (w[2] - w[1]),
-        -rate0 * w[2],
-    ];
+    let h = dj.closed_hinge_rates(rate0);
     let mut v = lp.full(&h.map(|x| -x));
     let pose = lp.chain.pose(&vec![0.0; 2 * NJ]);
     let mass = lp.chain.mass_matrix(&pose);

@@ -58,24 +58,8 @@ fn colonnade_impacts_keep_makris_vassiliou_restitution() {
 #[test]
 #[ignore]
 fn colonnade_overturning_against_single_column() {
-    use rocking::chain::colonnade::CappedColonnade;
-    use rocking::driver::{simulate, SimulationOptions, SteppingOptions, StoppingOptions};
-    use rocking::model::column::{Block, Column};
-    let (w, h, m) = (1.0, 5.0, 12500.0);
-    let gamma = 0.5;
-    let frame = CappedColonnade::frame(w, h, m, 4.0, 0.5, 2.0 * gamma * m);
-    let chain = frame.chain().unwrap();
-    let alpha = (w / h).atan();
-    let r = 0.5 * (w * w + h * h).sqrt();
-    let r_hat = r * (1.0 + 3.0 * gamma) / (1.0 + 2.0 * gamma);
-    let p_hat = (3.0 * GRAVITY / (4.0 * r_hat)).sqrt();
-    let column = Column::new(vec![Block::rectangle(
-        2.0 * r_hat * alpha.sin(),
-        2.0 * r_hat * alpha.cos(),
-        m,
-    )])
-    .unwrap();
-    let a_min = GRAVITY * alpha.tan();
+    let fc = FrameAndColumn::new();
+    let (chain, r_hat, p_hat, a_min) = (&fc.chain, fc.r_hat, fc.p_hat, fc.a_min);
     println!("p̂ = {p_hat:.6} rad/s, R̂ = {r_hat:.6} m");
     println!("| ω_p/p̂ | frame: a_p/(g tan α) | single column p = p̂ |");
     for ratio in [1.0, 2.0, 3.0, 4.0, 6.0] {
@@ -88,9 +72,9 @@ fn colonnade_overturning_against_single_column() {
             let motion = FnMotion(move |t| ground(t, amp, tp), tp);
             if first[0].is_none() {
                 let out = simulate_loop(
-                    &chain,
+                    chain,
                     &motion,
-                    LoopState::at_rest(&chain),
+                    LoopState::at_rest(chain),
                     &driver_options(duration),
                 )
                 .unwrap();
@@ -98,21 +82,8 @@ fn colonnade_overturning_against_single_column() {
                     first[0] = Some(level);
                 }
             }
-            if first[1].is_none() {
-                let opts = SimulationOptions {
-                    stepping: SteppingOptions {
-                        dt: 1e-3,
-                        ..SteppingOptions::default()
-                    },
-                    stopping: StoppingOptions {
-                        duration,
-                        ..StoppingOptions::default()
-                    },
-                    ..SimulationOptions::default()
-                };
-                if simulate(&column, &motion, &opts, None).unwrap().overturned {
-                    first[1] = Some(level);
-                }
+            if first[1].is_none() && column_run(&fc.column, &motion, duration).overturned {
+                first[1] = Some(level);
             }
             if first.iter().all(|f| f.is_some()) {
                 break;
@@ -135,24 +106,8 @@ fn colonnade_overturning_against_single_column() {
 #[ignore]
 fn colonnade_overturning_curve() {
     let sine = std::env::var("PULSE").is_ok_and(|p| p == "sine");
-    use rocking::chain::colonnade::CappedColonnade;
-    use rocking::driver::{simulate, SimulationOptions, SteppingOptions, StoppingOptions};
-    use rocking::model::column::{Block, Column};
-    let (w, h, m) = (1.0, 5.0, 12500.0);
-    let gamma = 0.5;
-    let frame = CappedColonnade::frame(w, h, m, 4.0, 0.5, 2.0 * gamma * m);
-    let chain = frame.chain().unwrap();
-    let alpha = (w / h).atan();
-    let r = 0.5 * (w * w + h * h).sqrt();
-    let r_hat = r * (1.0 + 3.0 * gamma) / (1.0 + 2.0 * gamma);
-    let p_hat = (3.0 * GRAVITY / (4.0 * r_hat)).sqrt();
-    let column = Column::new(vec![Block::rectangle(
-        2.0 * r_hat * alpha.sin(),
-        2.0 * r_hat * alpha.cos(),
-        m,
-    )])
-    .unwrap();
-    let a_min = GRAVITY * alpha.tan();
+    let fc = FrameAndColumn::new();
+    let (chain, p_hat, a_min) = (&fc.chain, fc.p_hat, fc.a_min);
     let ranges = |v: &[bool], levels: &[f64]| -> String {
         let mut out = Vec::new();
         let mut i = 0;
@@ -191,9 +146,9 @@ fn colonnade_overturning_curve() {
                 length,
             );
             let out = simulate_loop(
-                &chain,
+                chain,
                 &motion,
-                LoopState::at_rest(&chain),
+                LoopState::at_rest(chain),
                 &driver_options(duration),
             )
             .unwrap();
@@ -203,18 +158,7 @@ fn colonnade_overturning_curve() {
                 .filter(|e| matches!(e.kind, LoopEventKind::Closing { .. }))
                 .count();
             frame_over.push(out.collapsed);
-            let opts = SimulationOptions {
-                stepping: SteppingOptions {
-                    dt: 1e-3,
-                    ..SteppingOptions::default()
-                },
-                stopping: StoppingOptions {
-                    duration,
-                    ..StoppingOptions::default()
-                },
-                ..SimulationOptions::default()
-            };
-            let single = simulate(&column, &motion, &opts, None).unwrap();
+            let single = column_run(&fc.column, &motion, duration);
             // Impacts before the lowest overturning amplitude of each: 0 is the mode without
             // impact, more is overturning after impacts.
             if out.collapsed && !frame_over[..frame_over.len() - 1].contains(&true) {
@@ -240,4 +184,62 @@ fn colonnade_overturning_curve() {
             differ.join(" ")
         );
     }
+}
+
+/// The frame of `colonnade_impacts_keep_makris_vassiliou_restitution` (two 1 × 5 m columns of
+/// 12.5 t, tan α = 0.2, γ = m_beam / (2 m_column) = 0.5) and Makris & Vassiliou's single column of
+/// the same α with `p = p̂` (`R̂ = R (1 + 3γ) / (1 + 2γ)`), for the overturning tables below.
+struct FrameAndColumn {
+    chain: rocking::chain::Chain,
+    column: rocking::model::column::Column,
+    r_hat: f64,
+    p_hat: f64,
+    /// `g tan α`.
+    a_min: f64,
+}
+
+impl FrameAndColumn {
+    fn new() -> FrameAndColumn {
+        use rocking::chain::colonnade::CappedColonnade;
+        use rocking::model::column::{Block, Column};
+        let (w, h, m) = (1.0, 5.0, 12500.0);
+        let gamma = 0.5;
+        let frame = CappedColonnade::frame(w, h, m, 4.0, 0.5, 2.0 * gamma * m);
+        let alpha = (w / h).atan();
+        let r = 0.5 * (w * w + h * h).sqrt();
+        let r_hat = r * (1.0 + 3.0 * gamma) / (1.0 + 2.0 * gamma);
+        FrameAndColumn {
+            chain: frame.chain().unwrap(),
+            column: Column::new(vec![Block::rectangle(
+                2.0 * r_hat * alpha.sin(),
+                2.0 * r_hat * alpha.cos(),
+                m,
+            )])
+            .unwrap(),
+            r_hat,
+            p_hat: (3.0 * GRAVITY / (4.0 * r_hat)).sqrt(),
+            a_min: GRAVITY * alpha.tan(),
+        }
+    }
+}
+
+/// The single column through the column driver at dt = 1 ms for `duration`.
+fn column_run(
+    column: &rocking::model::column::Column,
+    motion: &dyn rocking::ground::GroundMotion,
+    duration: f64,
+) -> rocking::driver::Outcome {
+    use rocking::driver::{simulate, SimulationOptions, SteppingOptions, StoppingOptions};
+    let opts = SimulationOptions {
+        stepping: SteppingOptions {
+            dt: 1e-3,
+            ..SteppingOptions::default()
+        },
+        stopping: StoppingOptions {
+            duration,
+            ..StoppingOptions::default()
+        },
+        ..SimulationOptions::default()
+    };
+    simulate(column, motion, &opts, None).unwrap()
 }

@@ -20,6 +20,18 @@ pub(crate) struct Linkage {
 }
 
 impl FourHinge {
+    /// The four hinge rates (A … D) at the closed pose when the first segment turns at `rate0`
+    /// (the linkage's velocity analysis).
+    pub(crate) fn closed_hinge_rates(&self, rate0: f64) -> [f64; 4] {
+        let (w, _) = self.jacobian(&self.position(0.0, 0.0));
+        [
+            rate0 * w[0],
+            rate0 * (w[1] - w[0]),
+            rate0 * (w[2] - w[1]),
+            -rate0 * w[2],
+        ]
+    }
+
     pub(crate) fn new() -> FourHinge {
         let beta = PI / 2.0;
         let polar = |k: usize| PI / 2.0 + beta - 2.0 * beta * k as f64 / N as f64;

@@ -6,14 +6,7 @@ use super::*;
 /// The closed arch moving in the four-hinge mechanism with `θ̇(0) = rate0` (the hinge rates
 /// from DeJong's velocity analysis), as the driver's start state.
 fn moving_start(lp: &Loop, rate0: f64) -> LoopState {
-    let dj = FourHinge::new();
-    let (w, _) = dj.jacobian(&dj.position(0.0, 0.0));
-    let h = [
-        rate0 * w[0],
-        rate0 * (w[1] - w[0]),
-        rate0 * (w[2] - w[1]),
-        -rate0 * w[2],
-    ];
+    let h = FourHinge::new().closed_hinge_rates(rate0);
     let mut start = LoopState::at_rest(&lp.chain);
     start.rates = lp.full(&h);
     for (k, s) in HINGES {
