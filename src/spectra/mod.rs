@@ -17,7 +17,7 @@
 //! [`EquivalentBlock::of_column`]: crate::model::single_block::EquivalentBlock::of_column
 //!
 //! Time step ([`TimeStep`]): `dt = min(record_fraction · Δt_record, pulse_fraction · t_p,
-//! block_fraction / p)`; convergence in `dt` is shown in `docs/spectra.md` and tested.
+//! block_fraction / p)`; convergence in `dt` is shown in `docs/t1-accuracy.md` and tested.
 //!
 //! Sweeps are parallel over levels (OAS) or pulse durations (OC) with the `parallel` feature;
 //! every point is computed independently of the others and results are collected in order, so

@@ -235,7 +235,7 @@ fn a_point_on_a_fit_through_the_origin_is_not_a_violation() {
 /// `t_1` of the bundled record with the default time step, half of it and a quarter of it
 /// (small grid). Overturning near the boundary is chaotic, so `t_1` (the single most vulnerable
 /// grid point) settles into a band rather than to digits: the three agree within 10 %
-/// (`docs/spectra.md` has the study on the thesis's grid, down to a sixteenth).
+/// (`docs/t1-accuracy.md` has the study on the thesis's grid, down to a sixteenth).
 #[test]
 fn t1_converged_in_dt() {
     let record = bundled_record();

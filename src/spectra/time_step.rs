@@ -23,7 +23,7 @@ impl Default for TimeStep {
     /// (`t1_converged_in_dt`, 10 % band); the former step did not (0.19296 against 0.21249 at
     /// half the step). It is not converged within 10 % on every FEMA P695 record: FF-9 (DLT262)
     /// moves by 21 % at half the step and by 28 % more at a quarter, a chaotic governing point
-    /// that no step resolves (`docs/spectra.md`, "Time step and convergence of t1").
+    /// that no step resolves (`docs/t1-accuracy.md`, "Time step and convergence of t1").
     fn default() -> TimeStep {
         TimeStep {
             record_fraction: 0.25,
