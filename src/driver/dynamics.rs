@@ -10,6 +10,7 @@
 //!   (the centripetal force passes through the fixed pivot);
 //! - everything closed: the column is straight, `q = a_g Qa − g Qg` with constants.
 
+mod small;
 mod velocity;
 
 use super::chain::{ChainDynamics, Check, Equations, Rigid};
@@ -22,7 +23,15 @@ use crate::model::configuration::Status;
 use crate::model::impact::kinetic_energy;
 use crate::model::opening::{reaction_margins, AllClosed, Configuration};
 use crate::{impact_model, opening_model};
+use small::Small;
 use velocity::centre_accelerations;
+
+/// The general path, or the fused one of a column of two or three blocks (`small.rs`).
+enum Kernel {
+    General,
+    Two(Small<2>),
+    Three(Small<3>),
+}
 
 pub(crate) struct ColumnDynamics<'a> {
     pub col: &'a Column,
@@ -59,6 +68,7 @@ pub(crate) struct ColumnDynamics<'a> {
     /// models' input.
     pub system_mass: Vec<f64>,
     pub system_load: Vec<f64>,
+    kernel: Kernel,
 }
 
 impl<'a> ColumnDynamics<'a> {
@@ -96,6 +106,12 @@ impl<'a> ColumnDynamics<'a> {
             isq.push(1.0 / ip.sqrt());
         }
         let centre_y0 = pose.centres.iter().map(|c| c[1]).collect();
+        let s0: Vec<f64> = rigid[..n].iter().map(|r| r.s0).collect();
+        let kernel = match n {
+            2 => Kernel::Two(Small::new(col, gravity, exact, tol, friction, &s0)),
+            3 => Kernel::Three(Small::new(col, gravity, exact, tol, friction, &s0)),
+            _ => Kernel::General,
+        };
         ColumnDynamics {
             col,
             n,
@@ -125,6 +141,7 @@ impl<'a> ColumnDynamics<'a> {
             block_angles: vec![0.0; n],
             system_mass: vec![0.0; m * m],
             system_load: vec![0.0; m],
+            kernel,
         }
     }
 
@@ -340,10 +357,17 @@ impl Equations for ColumnDynamics<'_> {
                     self.phi[open[i]] = x[i];
                     self.rates[open[i]] = v[i];
                 }
-                self.col.pose_into(&self.phi, &mut self.pose);
-                let ok = self.solve_open(open, statuses, ag);
-                out[..k].copy_from_slice(&self.rhs[..k]);
-                ok
+                let (phi, rates) = (&self.phi, &self.rates);
+                match &self.kernel {
+                    Kernel::Two(s) => s.accel(open, statuses, ag, phi, rates, out),
+                    Kernel::Three(s) => s.accel(open, statuses, ag, phi, rates, out),
+                    Kernel::General => {
+                        self.col.pose_into(&self.phi, &mut self.pose);
+                        let ok = self.solve_open(open, statuses, ag);
+                        out[..k].copy_from_slice(&self.rhs[..k]);
+                        ok
+                    }
+                }
             }
         }
     }
@@ -435,7 +459,22 @@ impl ChainDynamics for ColumnDynamics<'_> {
                 out
             }
             _ => {
-                self.general_check(open, statuses, ag, phi, rates, forces, &mut out);
+                let scratch = (&mut self.phi[..], &mut self.rates[..]);
+                let (acc, margin, angles) =
+                    (&mut self.acc_full, &mut self.margin, &mut self.block_angles);
+                match &self.kernel {
+                    Kernel::Two(s) => s.check(
+                        open, statuses, ag, phi, rates, forces, scratch, acc, margin, angles,
+                        &mut out,
+                    ),
+                    Kernel::Three(s) => s.check(
+                        open, statuses, ag, phi, rates, forces, scratch, acc, margin, angles,
+                        &mut out,
+                    ),
+                    Kernel::General => {
+                        self.general_check(open, statuses, ag, phi, rates, forces, &mut out)
+                    }
+                }
                 out
             }
         }
