@@ -16,6 +16,8 @@ use crate::model::configuration::Status;
 
 /// Most DOFs of a small column (`2N`, `N ≤ 4`).
 const DOFS: usize = 8;
+/// Most entries of its `M_FF` (at most one open DOF per interface: `N²`).
+const OPEN_SQ: usize = 16;
 
 /// The constants of a column of `N` blocks.
 #[derive(Clone, Copy, Debug)]
@@ -285,7 +287,7 @@ impl<const N: usize> Small<N> {
         diag: &mut [f64; DOFS],
     ) -> bool {
         let k = open.len();
-        let mut mk = [0.0; DOFS * DOFS];
+        let mut mk = [0.0; OPEN_SQ];
         for (r, &a) in open.iter().enumerate() {
             for (c, &b) in open.iter().enumerate().skip(r) {
                 let v = self.mass_entry(pose, a, b);
