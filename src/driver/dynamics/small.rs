@@ -78,6 +78,31 @@ impl<const N: usize> Pose<N> {
 /// The sums behind the velocity terms (`ColumnDynamics::velocity_sums`).
 type Velocity<const N: usize> = ([f64; N], [[f64; 2]; N]);
 
+/// The arguments of [`Small::accel`].
+type AccelArgs<'a> = (
+    &'a [usize],
+    &'a [Status],
+    f64,
+    &'a [f64],
+    &'a [f64],
+    &'a mut [f64],
+);
+
+/// The arguments of [`Small::check`].
+type CheckArgs<'a> = (
+    &'a [usize],
+    &'a [Status],
+    f64,
+    &'a [f64],
+    &'a [f64],
+    bool,
+    (&'a mut [f64], &'a mut [f64]),
+    &'a mut [f64],
+    &'a mut [f64],
+    &'a mut [f64],
+    &'a mut Check,
+);
+
 impl<const N: usize> Small<N> {
     pub fn new(col: &Column, g: f64, exact: bool, tol: f64, friction: f64, s0r: &[f64]) -> Self {
         assert!(col.n_interfaces() == N && 2 * N <= DOFS);
@@ -311,6 +336,7 @@ impl<const N: usize> Small<N> {
 
     /// `Equations::accel` with two or more open DOFs; `phi`, `rates` are the full DOF vectors.
     #[allow(clippy::too_many_arguments)]
+    #[inline]
     pub fn accel(
         &self,
         open: &[usize],
@@ -320,8 +346,32 @@ impl<const N: usize> Small<N> {
         rates: &[f64],
         out: &mut [f64],
     ) -> bool {
+        let args = (open, statuses, ag, phi, rates, out);
+        match (open.len(), self.exact) {
+            (2, false) => self.accel_of::<2, false>(args),
+            (2, true) => self.accel_of::<2, true>(args),
+            (3, false) => self.accel_of::<3, false>(args),
+            (3, true) => self.accel_of::<3, true>(args),
+            (_, exact) => {
+                if exact {
+                    self.accel_of::<0, true>(args)
+                } else {
+                    self.accel_of::<0, false>(args)
+                }
+            }
+        }
+    }
+
+    /// [`Small::accel`] with `K` open DOFs (0: any) and the velocity terms if `EXACT`; the same
+    /// operations, with the loops' lengths known to the compiler.
+    #[inline(always)]
+    fn accel_of<const K: usize, const EXACT: bool>(
+        &self,
+        (open, statuses, ag, phi, rates, out): AccelArgs,
+    ) -> bool {
+        let open = if K > 0 { &open[..K] } else { open };
         let pose = self.pose(phi);
-        let vel = self.exact.then(|| self.velocity(&pose, statuses, rates));
+        let vel = EXACT.then(|| self.velocity(&pose, statuses, rates));
         let (mut rhs, mut q, mut diag) = ([0.0; DOFS], [0.0; DOFS], [0.0; DOFS]);
         let ok = self.solve(&pose, vel.as_ref(), open, ag, &mut rhs, &mut q, &mut diag);
         let k = open.len();
@@ -332,6 +382,7 @@ impl<const N: usize> Small<N> {
     /// `ColumnDynamics::general_check`: the accelerations, margins and block rotations into
     /// `acc_full`, `margin`, `block_angles`; `scratch_phi`, `scratch_rates` become `phi`, `rates`.
     #[allow(clippy::too_many_arguments)]
+    #[inline]
     pub fn check(
         &self,
         open: &[usize],
@@ -346,13 +397,42 @@ impl<const N: usize> Small<N> {
         block_angles: &mut [f64],
         out: &mut Check,
     ) {
+        let args = (
+            open,
+            statuses,
+            ag,
+            phi,
+            rates,
+            forces,
+            scratch,
+            acc_full,
+            margin,
+            block_angles,
+            out,
+        );
+        // One open DOF is most steps of a column (the part above one interface rocks).
+        match (open.len(), self.exact) {
+            (1, false) => self.check_of::<1, false>(args),
+            (1, true) => self.check_of::<1, true>(args),
+            (_, false) => self.check_of::<0, false>(args),
+            (_, true) => self.check_of::<0, true>(args),
+        }
+    }
+
+    /// [`Small::check`] with `K` open DOFs (0: any) and the velocity terms if `EXACT`.
+    #[inline(always)]
+    fn check_of<const K: usize, const EXACT: bool>(
+        &self,
+        (open, statuses, ag, phi, rates, forces, scratch, acc_full, margin, block_angles, out): CheckArgs,
+    ) {
+        let open = if K > 0 { &open[..K] } else { open };
         let (phi, rates, statuses) = (&phi[..2 * N], &rates[..2 * N], &statuses[..N]);
         let (acc_full, margin) = (&mut acc_full[..2 * N], &mut margin[..2 * N]);
         let g = self.g;
         scratch.0[..2 * N].copy_from_slice(phi);
         scratch.1[..2 * N].copy_from_slice(rates);
         let pose = self.pose(phi);
-        let vel = self.exact.then(|| self.velocity(&pose, statuses, rates));
+        let vel = EXACT.then(|| self.velocity(&pose, statuses, rates));
         let (mut rhs, mut q, mut diag) = ([0.0; DOFS], [0.0; DOFS], [0.0; DOFS]);
         out.ok = self.solve(&pose, vel.as_ref(), open, ag, &mut rhs, &mut q, &mut diag);
         acc_full.iter_mut().for_each(|v| *v = 0.0);
