@@ -11,6 +11,8 @@
 //! - everything closed: the column is straight, `q = a_g Qa − g Qg` with constants.
 
 mod small;
+#[cfg(test)]
+mod small_tests;
 mod velocity;
 
 use super::chain::{ChainDynamics, Check, Equations, Rigid};
@@ -105,11 +107,12 @@ impl<'a> ColumnDynamics<'a> {
             qg.push(-pose.load_entry(a, 0.0, 1.0));
             isq.push(1.0 / ip.sqrt());
         }
-        let centre_y0 = pose.centres.iter().map(|c| c[1]).collect();
+        let centre_y0: Vec<f64> = pose.centres.iter().map(|c| c[1]).collect();
         let s0: Vec<f64> = rigid[..n].iter().map(|r| r.s0).collect();
+        let y0 = &centre_y0;
         let kernel = match n {
-            2 => Kernel::Two(Small::new(col, gravity, exact, tol, friction, &s0)),
-            3 => Kernel::Three(Small::new(col, gravity, exact, tol, friction, &s0)),
+            2 => Kernel::Two(Small::new(col, gravity, exact, tol, friction, &s0, y0)),
+            3 => Kernel::Three(Small::new(col, gravity, exact, tol, friction, &s0, y0)),
             _ => Kernel::General,
         };
         ColumnDynamics {
@@ -493,6 +496,11 @@ impl ChainDynamics for ColumnDynamics<'_> {
     }
 
     fn energy(&mut self, open: &[usize], phi: &[f64], rates: &[f64]) -> (f64, f64) {
+        match &self.kernel {
+            Kernel::Two(s) => return s.energy(open, phi, rates),
+            Kernel::Three(s) => return s.energy(open, phi, rates),
+            Kernel::General => {}
+        }
         self.col.pose_into(phi, &mut self.pose);
         let mut t = 0.0;
         for &a in open {
