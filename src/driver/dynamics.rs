@@ -9,6 +9,9 @@
 //!   pivot and `q_a(θ) = S0 (a_g r_y − g r_x)` with `r = R(θ)(G − P)`; the velocity terms vanish
 //!   (the centripetal force passes through the fixed pivot);
 //! - everything closed: the column is straight, `q = a_g Qa − g Qg` with constants.
+//!
+//! Columns of two and three blocks take the general path on fixed-size arrays, fused and
+//! monomorphised (`small.rs`), bit for bit the same operations.
 
 mod small;
 #[cfg(test)]
