@@ -9,7 +9,13 @@
 //!   pivot and `q_a(θ) = S0 (a_g r_y − g r_x)` with `r = R(θ)(G − P)`; the velocity terms vanish
 //!   (the centripetal force passes through the fixed pivot);
 //! - everything closed: the column is straight, `q = a_g Qa − g Qg` with constants.
+//!
+//! Columns of two and three blocks take the general path on fixed-size arrays, fused and
+//! monomorphised (`small.rs`), bit for bit the same operations.
 
+mod small;
+#[cfg(test)]
+mod small_tests;
 mod velocity;
 
 use super::chain::{ChainDynamics, Check, Equations, Rigid};
@@ -22,7 +28,15 @@ use crate::model::configuration::Status;
 use crate::model::impact::kinetic_energy;
 use crate::model::opening::{reaction_margins, AllClosed, Configuration};
 use crate::{impact_model, opening_model};
+use small::Small;
 use velocity::centre_accelerations;
+
+/// The general path, or the fused one of a column of two or three blocks (`small.rs`).
+enum Kernel {
+    General,
+    Two(Small<2>),
+    Three(Small<3>),
+}
 
 pub(crate) struct ColumnDynamics<'a> {
     pub col: &'a Column,
@@ -59,6 +73,7 @@ pub(crate) struct ColumnDynamics<'a> {
     /// models' input.
     pub system_mass: Vec<f64>,
     pub system_load: Vec<f64>,
+    kernel: Kernel,
 }
 
 impl<'a> ColumnDynamics<'a> {
@@ -95,7 +110,14 @@ impl<'a> ColumnDynamics<'a> {
             qg.push(-pose.load_entry(a, 0.0, 1.0));
             isq.push(1.0 / ip.sqrt());
         }
-        let centre_y0 = pose.centres.iter().map(|c| c[1]).collect();
+        let centre_y0: Vec<f64> = pose.centres.iter().map(|c| c[1]).collect();
+        let s0: Vec<f64> = rigid[..n].iter().map(|r| r.s0).collect();
+        let y0 = &centre_y0;
+        let kernel = match n {
+            2 => Kernel::Two(Small::new(col, gravity, exact, tol, friction, &s0, y0)),
+            3 => Kernel::Three(Small::new(col, gravity, exact, tol, friction, &s0, y0)),
+            _ => Kernel::General,
+        };
         ColumnDynamics {
             col,
             n,
@@ -125,6 +147,7 @@ impl<'a> ColumnDynamics<'a> {
             block_angles: vec![0.0; n],
             system_mass: vec![0.0; m * m],
             system_load: vec![0.0; m],
+            kernel,
         }
     }
 
@@ -340,10 +363,17 @@ impl Equations for ColumnDynamics<'_> {
                     self.phi[open[i]] = x[i];
                     self.rates[open[i]] = v[i];
                 }
-                self.col.pose_into(&self.phi, &mut self.pose);
-                let ok = self.solve_open(open, statuses, ag);
-                out[..k].copy_from_slice(&self.rhs[..k]);
-                ok
+                let (phi, rates) = (&self.phi, &self.rates);
+                match &self.kernel {
+                    Kernel::Two(s) => s.accel(open, statuses, ag, phi, rates, out),
+                    Kernel::Three(s) => s.accel(open, statuses, ag, phi, rates, out),
+                    Kernel::General => {
+                        self.col.pose_into(&self.phi, &mut self.pose);
+                        let ok = self.solve_open(open, statuses, ag);
+                        out[..k].copy_from_slice(&self.rhs[..k]);
+                        ok
+                    }
+                }
             }
         }
     }
@@ -435,7 +465,22 @@ impl ChainDynamics for ColumnDynamics<'_> {
                 out
             }
             _ => {
-                self.general_check(open, statuses, ag, phi, rates, forces, &mut out);
+                let scratch = (&mut self.phi[..], &mut self.rates[..]);
+                let (acc, margin, angles) =
+                    (&mut self.acc_full, &mut self.margin, &mut self.block_angles);
+                match &self.kernel {
+                    Kernel::Two(s) => s.check(
+                        open, statuses, ag, phi, rates, forces, scratch, acc, margin, angles,
+                        &mut out,
+                    ),
+                    Kernel::Three(s) => s.check(
+                        open, statuses, ag, phi, rates, forces, scratch, acc, margin, angles,
+                        &mut out,
+                    ),
+                    Kernel::General => {
+                        self.general_check(open, statuses, ag, phi, rates, forces, &mut out)
+                    }
+                }
                 out
             }
         }
@@ -454,6 +499,11 @@ impl ChainDynamics for ColumnDynamics<'_> {
     }
 
     fn energy(&mut self, open: &[usize], phi: &[f64], rates: &[f64]) -> (f64, f64) {
+        match &self.kernel {
+            Kernel::Two(s) => return s.energy(open, phi, rates),
+            Kernel::Three(s) => return s.energy(open, phi, rates),
+            Kernel::General => {}
+        }
         self.col.pose_into(phi, &mut self.pose);
         let mut t = 0.0;
         for &a in open {

@@ -165,6 +165,11 @@ impl Column {
         self.half_contact[k]
     }
 
+    /// Height of interface `k` in the straight column, `Σ_{j<k} h_j`.
+    pub(crate) fn base_height(&self, k: usize) -> f64 {
+        self.base_height[k]
+    }
+
     /// Moment of inertia of block `k` about its centre.
     pub fn inertia(&self, k: usize) -> f64 {
         self.inertia[k]
