@@ -371,26 +371,35 @@ impl Chain {
     pub fn mass_matrix(&self, pose: &ChainPose) -> Vec<f64> {
         let (nj, m) = (self.n_joints(), self.n_dofs());
         let nb = self.n_bodies();
-        // Each DOF's joint and pivot once; row by row, the entries left of the diagonal copied
-        // from the rows above (the entries' arithmetic as before, no zero fill).
-        let joint: Vec<usize> = (0..m).map(|a| a % nj).collect();
-        let pivots: Vec<[f64; 2]> = (0..m).map(|a| self.pivot(pose, a)).collect();
-        let mut out = Vec::with_capacity(m * m);
-        for a in 0..m {
-            for b in 0..a {
-                out.push(out[b * m + a]);
-            }
-            let (ja, pa) = (joint[a], pivots[a]);
-            for b in a..m {
-                let k = ja.max(joint[b]).min(nb);
-                let s0 = pose.suffix_mass[k];
-                let v = if s0 == 0.0 {
+        // Each DOF's joint (clamped to the bodies: `max(j_a, j_b).min(N)` is the larger of the
+        // clamped joints) and pivot once; the upper triangle row by row, then the entries left of
+        // the diagonal copied from it (the entries' arithmetic as before).
+        let dofs: Vec<(usize, [f64; 2])> = (0..m)
+            .map(|a| ((a % nj).min(nb), self.pivot(pose, a)))
+            .collect();
+        let (mass, centre, polar) = (
+            &pose.suffix_mass[..=nb],
+            &pose.suffix_centre[..=nb],
+            &pose.suffix_polar[..=nb],
+        );
+        let mut out = vec![0.0; m * m];
+        for (a, row) in out.chunks_exact_mut(m).enumerate() {
+            let (ka, pa) = dofs[a];
+            for (x, &(kb, pb)) in row[a..].iter_mut().zip(&dofs[a..]) {
+                let k = ka.max(kb);
+                let s0 = mass[k];
+                *x = if s0 == 0.0 {
                     0.0
                 } else {
-                    let g = pose.suffix_centre[k];
-                    s0 * dot(sub(g, pa), sub(g, pivots[b])) + pose.suffix_polar[k]
+                    let g = centre[k];
+                    s0 * dot(sub(g, pa), sub(g, pb)) + polar[k]
                 };
-                out.push(v);
+            }
+        }
+        for a in 1..m {
+            let (upper, lower) = out.split_at_mut(a * m);
+            for (b, x) in lower[..a].iter_mut().enumerate() {
+                *x = upper[b * m + a];
             }
         }
         out
