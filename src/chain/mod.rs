@@ -372,8 +372,7 @@ impl Chain {
         let (nj, m) = (self.n_joints(), self.n_dofs());
         let nb = self.n_bodies();
         // Each DOF's joint (clamped to the bodies: `max(j_a, j_b).min(N)` is the larger of the
-        // clamped joints) and pivot once; the upper triangle row by row, then the entries left of
-        // the diagonal copied from it (the entries' arithmetic as before).
+        // clamped joints) and pivot once (the entries' arithmetic as before).
         let dofs: Vec<(usize, [f64; 2])> = (0..m)
             .map(|a| ((a % nj).min(nb), self.pivot(pose, a)))
             .collect();
@@ -382,25 +381,24 @@ impl Chain {
             &pose.suffix_centre[..=nb],
             &pose.suffix_polar[..=nb],
         );
-        let mut out = vec![0.0; m * m];
-        for (a, row) in out.chunks_exact_mut(m).enumerate() {
-            let (ka, pa) = dofs[a];
-            for (x, &(kb, pb)) in row[a..].iter_mut().zip(&dofs[a..]) {
+        // Row by row without a zero fill (a zeroed allocation of this size costs more than the
+        // rows): the entries left of the diagonal copied from the rows above.
+        let mut out = Vec::with_capacity(m * m);
+        for (a, &(ka, pa)) in dofs.iter().enumerate() {
+            for b in 0..a {
+                let v = out[b * m + a];
+                out.push(v);
+            }
+            out.extend(dofs[a..].iter().map(|&(kb, pb)| {
                 let k = ka.max(kb);
                 let s0 = mass[k];
-                *x = if s0 == 0.0 {
+                if s0 == 0.0 {
                     0.0
                 } else {
                     let g = centre[k];
                     s0 * dot(sub(g, pa), sub(g, pb)) + polar[k]
-                };
-            }
-        }
-        for a in 1..m {
-            let (upper, lower) = out.split_at_mut(a * m);
-            for (b, x) in lower[..a].iter_mut().enumerate() {
-                *x = upper[b * m + a];
-            }
+                }
+            }));
         }
         out
     }
