@@ -433,14 +433,33 @@ impl ConstrainedProblem {
         }))
     }
 
-    /// Gradient `b̂_j − (Â ŷ)_j − (Ĉᵀ μ)_j` of generator `j` at the point `y` (length `p`,
-    /// non-zero only on `set`), with the multipliers `mu` (length `nc`).
-    pub fn gradient(&self, j: usize, set: &[usize], y: &[f64], mu: &[f64]) -> f64 {
+    /// Gradients `b̂_j − (Â ŷ)_j − (Ĉᵀ μ)_j` of every generator `j` at the point `y` (length `p`,
+    /// non-zero only on `set`) with the multipliers `mu` (length `nc`), into `out` (length `p`):
+    /// `(Â ŷ)_j` summed over `set` in its order from −0.0 and `(Ĉᵀ μ)_j` over the rows in
+    /// order, as `sum()` — `Â` is symmetric to the bit (built mirrored, each entry scaled by the
+    /// product of its two scales), so row `s` of it holds column `s`, and the sums of all `j`
+    /// run along rows.
+    pub fn gradients(&self, set: &[usize], y: &[f64], mu: &[f64], out: &mut Vec<f64>) {
         let p = self.p();
-        let row = &self.cone.a[j * p..(j + 1) * p];
-        let ay: f64 = set.iter().map(|&s| row[s] * y[s]).sum();
-        let cm: f64 = (0..self.nc).map(|r| self.c[r * p + j] * mu[r]).sum();
-        self.cone.b[j] - ay - cm
+        let mut ay = std::mem::take(out);
+        ay.clear();
+        ay.resize(p, -0.0);
+        for &s in set {
+            let ys = y[s];
+            for (acc, a) in ay.iter_mut().zip(&self.cone.a[s * p..(s + 1) * p]) {
+                *acc += a * ys;
+            }
+        }
+        let mut cm = vec![-0.0; p];
+        for (r, &m) in mu.iter().enumerate().take(self.nc) {
+            for (acc, c) in cm.iter_mut().zip(&self.c[r * p..(r + 1) * p]) {
+                *acc += c * m;
+            }
+        }
+        for ((g, &b), &c) in ay.iter_mut().zip(&self.cone.b).zip(&cm) {
+            *g = b - *g - c;
+        }
+        *out = ay;
     }
 }
 
