@@ -21,6 +21,7 @@ pub(crate) struct PivotedQr {
     vecs: Vec<f64>,
     beta: Vec<f64>,
     work: Vec<f64>,
+    full: Vec<f64>,
 }
 
 impl PivotedQr {
@@ -219,6 +220,8 @@ impl PivotedQr {
     pub fn congruence(&mut self, a: &mut [f64]) {
         let k = self.k;
         let mut w = std::mem::take(&mut self.work);
+        // `v` over all `k` entries (zero before `s`).
+        let mut vfull = std::mem::take(&mut self.full);
         for s in 0..self.rank {
             let v = &self.vecs[s * k..s * k + (k - s)];
             let beta = self.beta[s];
@@ -231,29 +234,28 @@ impl PivotedQr {
                     w[i] -= half * v[i - s];
                 }
             }
+            vfull.clear();
+            vfull.resize(s, 0.0);
+            vfull.extend_from_slice(v);
             // Rows and columns before s: only the columns s.. change (A_ij −= u_i v_j).
-            for i in 0..k {
+            for (i, row) in a.chunks_exact_mut(k).enumerate() {
                 let ui = w[i];
-                let vi = if i >= s { v[i - s] } else { 0.0 };
-                let row = &mut a[i * k..(i + 1) * k];
+                let vi = vfull[i];
                 if vi == 0.0 {
                     for (x, vj) in row[s..].iter_mut().zip(v) {
                         *x -= ui * vj;
                     }
                 } else {
                     // Columns before s have v_j = 0 (the product `ui * 0.0` kept: the same
-                    // operations as one loop over every column, in two branch-free loops).
-                    let (head, tail) = row.split_at_mut(s);
-                    for (x, wj) in head.iter_mut().zip(&w[..s]) {
-                        *x -= vi * wj + ui * 0.0;
-                    }
-                    for ((x, wj), vj) in tail.iter_mut().zip(&w[s..]).zip(v) {
+                    // operations as one loop over every column).
+                    for ((x, wj), vj) in row.iter_mut().zip(&w[..k]).zip(&vfull) {
                         *x -= vi * wj + ui * vj;
                     }
                 }
             }
         }
         self.work = w;
+        self.full = vfull;
     }
 
     /// Solves `R11ᵀ u = (Πᵀ r)[..ρ]` (forward substitution) and returns the residual of the other
