@@ -323,6 +323,40 @@ impl Chain {
         s0 * dot(sub(g, pa), sub(g, pb)) + pose.suffix_polar[k]
     }
 
+    /// The entries [`Chain::mass_entry_of`] of every pair of the DOFs `dofs` (given by
+    /// [`Chain::dof_pivot`]) into the leading `dofs.len()` square of the row-major matrix `out` of
+    /// row length `stride`, both triangles (the same arithmetic: `max(j_a, j_b).min(N)` is the
+    /// larger of the clamped joints).
+    pub fn mass_block_into(
+        &self,
+        pose: &ChainPose,
+        dofs: &[(usize, [f64; 2])],
+        out: &mut [f64],
+        stride: usize,
+    ) {
+        let nb = self.n_bodies();
+        let (mass, centre, polar) = (
+            &pose.suffix_mass[..=nb],
+            &pose.suffix_centre[..=nb],
+            &pose.suffix_polar[..=nb],
+        );
+        for (i, &(ka, pa)) in dofs.iter().enumerate() {
+            let ka = ka.min(nb);
+            for (j, &(kb, pb)) in dofs.iter().enumerate().skip(i) {
+                let k = ka.max(kb.min(nb));
+                let s0 = mass[k];
+                let v = if s0 == 0.0 {
+                    0.0
+                } else {
+                    let g = centre[k];
+                    s0 * dot(sub(g, pa), sub(g, pb)) + polar[k]
+                };
+                out[i * stride + j] = v;
+                out[j * stride + i] = v;
+            }
+        }
+    }
+
     /// Entry `M[a][b]` of the mass matrix of the cut chain in the pose ([`Chain::mass_matrix`]).
     #[inline]
     pub fn mass_entry(&self, pose: &ChainPose, a: usize, b: usize) -> f64 {

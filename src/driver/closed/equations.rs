@@ -134,12 +134,8 @@ impl<'a> LoopEquations<'a> {
         self.pivots
             .extend(open.iter().map(|&d| self.chain.dof_pivot(pose, d)));
         let (a, b, piv) = (&mut self.kkt, &mut self.rhs, &self.pivots);
+        self.chain.mass_block_into(pose, piv, a, k);
         for (i, &di) in open.iter().enumerate() {
-            for j in i..nf {
-                let mij = self.chain.mass_entry_of(pose, piv[i], piv[j]);
-                a[i * k + j] = mij;
-                a[j * k + i] = mij;
-            }
             let p = piv[i].1;
             for (r, g) in [1.0, p[1], -p[0]].into_iter().enumerate() {
                 a[i * k + nf + r] = g;
