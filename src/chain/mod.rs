@@ -323,6 +323,40 @@ impl Chain {
         s0 * dot(sub(g, pa), sub(g, pb)) + pose.suffix_polar[k]
     }
 
+    /// The entries [`Chain::mass_entry_of`] of every pair of the DOFs `dofs` (given by
+    /// [`Chain::dof_pivot`]) into the leading `dofs.len()` square of the row-major matrix `out` of
+    /// row length `stride`, both triangles (the same arithmetic: `max(j_a, j_b).min(N)` is the
+    /// larger of the clamped joints).
+    pub fn mass_block_into(
+        &self,
+        pose: &ChainPose,
+        dofs: &[(usize, [f64; 2])],
+        out: &mut [f64],
+        stride: usize,
+    ) {
+        let nb = self.n_bodies();
+        let (mass, centre, polar) = (
+            &pose.suffix_mass[..=nb],
+            &pose.suffix_centre[..=nb],
+            &pose.suffix_polar[..=nb],
+        );
+        for (i, &(ka, pa)) in dofs.iter().enumerate() {
+            let ka = ka.min(nb);
+            for (j, &(kb, pb)) in dofs.iter().enumerate().skip(i) {
+                let k = ka.max(kb.min(nb));
+                let s0 = mass[k];
+                let v = if s0 == 0.0 {
+                    0.0
+                } else {
+                    let g = centre[k];
+                    s0 * dot(sub(g, pa), sub(g, pb)) + polar[k]
+                };
+                out[i * stride + j] = v;
+                out[j * stride + i] = v;
+            }
+        }
+    }
+
     /// Entry `M[a][b]` of the mass matrix of the cut chain in the pose ([`Chain::mass_matrix`]).
     #[inline]
     pub fn mass_entry(&self, pose: &ChainPose, a: usize, b: usize) -> f64 {
@@ -371,27 +405,34 @@ impl Chain {
     pub fn mass_matrix(&self, pose: &ChainPose) -> Vec<f64> {
         let (nj, m) = (self.n_joints(), self.n_dofs());
         let nb = self.n_bodies();
-        // Each DOF's joint and pivot once; row by row, the entries left of the diagonal copied
-        // from the rows above (the entries' arithmetic as before, no zero fill).
-        let joint: Vec<usize> = (0..m).map(|a| a % nj).collect();
-        let pivots: Vec<[f64; 2]> = (0..m).map(|a| self.pivot(pose, a)).collect();
+        // Each DOF's joint (clamped to the bodies: `max(j_a, j_b).min(N)` is the larger of the
+        // clamped joints) and pivot once (the entries' arithmetic as before).
+        let dofs: Vec<(usize, [f64; 2])> = (0..m)
+            .map(|a| ((a % nj).min(nb), self.pivot(pose, a)))
+            .collect();
+        let (mass, centre, polar) = (
+            &pose.suffix_mass[..=nb],
+            &pose.suffix_centre[..=nb],
+            &pose.suffix_polar[..=nb],
+        );
+        // Row by row without a zero fill (a zeroed allocation of this size costs more than the
+        // rows): the entries left of the diagonal copied from the rows above.
         let mut out = Vec::with_capacity(m * m);
-        for a in 0..m {
+        for (a, &(ka, pa)) in dofs.iter().enumerate() {
             for b in 0..a {
-                out.push(out[b * m + a]);
-            }
-            let (ja, pa) = (joint[a], pivots[a]);
-            for b in a..m {
-                let k = ja.max(joint[b]).min(nb);
-                let s0 = pose.suffix_mass[k];
-                let v = if s0 == 0.0 {
-                    0.0
-                } else {
-                    let g = pose.suffix_centre[k];
-                    s0 * dot(sub(g, pa), sub(g, pivots[b])) + pose.suffix_polar[k]
-                };
+                let v = out[b * m + a];
                 out.push(v);
             }
+            out.extend(dofs[a..].iter().map(|&(kb, pb)| {
+                let k = ka.max(kb);
+                let s0 = mass[k];
+                if s0 == 0.0 {
+                    0.0
+                } else {
+                    let g = centre[k];
+                    s0 * dot(sub(g, pa), sub(g, pb)) + polar[k]
+                }
+            }));
         }
         out
     }

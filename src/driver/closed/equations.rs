@@ -134,12 +134,8 @@ impl<'a> LoopEquations<'a> {
         self.pivots
             .extend(open.iter().map(|&d| self.chain.dof_pivot(pose, d)));
         let (a, b, piv) = (&mut self.kkt, &mut self.rhs, &self.pivots);
+        self.chain.mass_block_into(pose, piv, a, k);
         for (i, &di) in open.iter().enumerate() {
-            for j in i..nf {
-                let mij = self.chain.mass_entry_of(pose, piv[i], piv[j]);
-                a[i * k + j] = mij;
-                a[j * k + i] = mij;
-            }
             let p = piv[i].1;
             for (r, g) in [1.0, p[1], -p[0]].into_iter().enumerate() {
                 a[i * k + nf + r] = g;
@@ -282,14 +278,85 @@ impl<'a> LoopEquations<'a> {
     }
 }
 
-/// Solves the dense `a x = b` in place (`b` becomes `x`) by Gaussian elimination with partial
-/// pivoting; `false` if a pivot is zero or the result is not finite.
+/// Solves the dense `a x = b` in place (`b` becomes `x`, `a` is left as scratch) by Gaussian
+/// elimination with partial pivoting; `false` if a pivot is zero or the result is not finite.
 ///
 /// The pivot is the last row of largest `|a_ic|` (`total_cmp`, as `Iterator::max_by`). Only the
 /// entries right of the pivot column are swapped and updated: those left of it and below the
 /// diagonal are never read again (the multiplier is taken before), so the factors and the
 /// solution are those of the full update to the bit.
 pub(super) fn solve_in_place(a: &mut [f64], b: &mut [f64]) -> bool {
+    // The driver's systems (`|F| + 3` unknowns) in rows of a fixed length: the same operations.
+    match b.len() {
+        4 => solve_fixed::<4>(a, b),
+        5 => solve_fixed::<5>(a, b),
+        6 => solve_fixed::<6>(a, b),
+        7 => solve_fixed::<7>(a, b),
+        8 => solve_fixed::<8>(a, b),
+        9 => solve_fixed::<9>(a, b),
+        10 => solve_fixed::<10>(a, b),
+        11 => solve_fixed::<11>(a, b),
+        12 => solve_fixed::<12>(a, b),
+        13 => solve_fixed::<13>(a, b),
+        14 => solve_fixed::<14>(a, b),
+        15 => solve_fixed::<15>(a, b),
+        16 => solve_fixed::<16>(a, b),
+        _ => solve_any(a, b),
+    }
+}
+
+/// [`solve_in_place`] for `N` unknowns. Each row below the pivot is updated over its whole
+/// length `N` (a loop of known length, without the short loop's overhead): the entries right of
+/// the pivot column get the one multiplication and subtraction of [`solve_any`] (the same bits);
+/// those at or left of it are never read again (the multiplier is taken before the update; later
+/// pivot searches, updates and the back substitution read only columns right of theirs), so
+/// what they hold does not matter.
+fn solve_fixed<const N: usize>(a: &mut [f64], b: &mut [f64]) -> bool {
+    debug_assert!(a.len() == N * N && b.len() == N);
+    // The matrix as rows of known length (a copy on the stack; `a` is scratch to the callers).
+    let mut rows = [[0.0_f64; N]; N];
+    for (row, src) in rows.iter_mut().zip(a.chunks_exact(N)) {
+        row.copy_from_slice(src);
+    }
+    let b = &mut b[..N];
+    for col in 0..N {
+        let mut piv = col;
+        let mut best = rows[col][col].abs();
+        for (i, row) in rows.iter().enumerate().skip(col + 1) {
+            let v = row[col].abs();
+            if v.total_cmp(&best) != std::cmp::Ordering::Less {
+                piv = i;
+                best = v;
+            }
+        }
+        if rows[piv][col] == 0.0 {
+            return false;
+        }
+        if piv != col {
+            rows.swap(col, piv);
+            b.swap(col, piv);
+        }
+        let (top, bottom) = rows.split_at_mut(col + 1);
+        let prow = &top[col];
+        let d = prow[col];
+        let bc = b[col];
+        for (row, br) in bottom.iter_mut().zip(&mut b[col + 1..]) {
+            let f = row[col] / d;
+            for j in 0..N {
+                row[j] -= f * prow[j];
+            }
+            *br -= f * bc;
+        }
+    }
+    for r in (0..N).rev() {
+        let s: f64 = (r + 1..N).map(|k| rows[r][k] * b[k]).sum();
+        b[r] = (b[r] - s) / rows[r][r];
+    }
+    b.iter().all(|x| x.is_finite())
+}
+
+/// [`solve_in_place`] for any size.
+fn solve_any(a: &mut [f64], b: &mut [f64]) -> bool {
     let n = b.len();
     debug_assert_eq!(a.len(), n * n);
     for col in 0..n {
@@ -329,4 +396,55 @@ pub(super) fn solve_in_place(a: &mut [f64], b: &mut [f64]) -> bool {
         b[r] = (b[r] - s) / a[r * n + r];
     }
     b.iter().all(|x| x.is_finite())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The fixed-size elimination is the general one bit for bit: random systems of 4–16
+    /// unknowns, symmetric KKT-like ones with a zero block, ties in the pivot column and a
+    /// singular one.
+    #[test]
+    fn fixed_sizes_are_the_general_solve_bit_for_bit() {
+        let mut seed = 0x9e37_79b9_7f4a_7c15_u64;
+        let mut next = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+        };
+        for case in 0..600 {
+            let n = 4 + case % 13;
+            let mut a: Vec<f64> = (0..n * n).map(|_| next()).collect();
+            match case % 4 {
+                1 => {
+                    // Symmetric with a trailing 3 × 3 zero block (a loop's KKT system).
+                    for i in 0..n {
+                        for j in 0..i {
+                            a[i * n + j] = a[j * n + i];
+                        }
+                    }
+                    for i in n - 3..n {
+                        for j in n - 3..n {
+                            a[i * n + j] = 0.0;
+                        }
+                    }
+                }
+                2 => (0..n).for_each(|i| a[i * n] = if i % 2 == 0 { 0.5 } else { -0.5 }),
+                3 if case % 8 == 3 => (0..n).for_each(|i| a[i * n + 1] = 2.0 * a[i * n]),
+                _ => {}
+            }
+            let b: Vec<f64> = (0..n).map(|_| next()).collect();
+            let (mut a1, mut b1) = (a.clone(), b.clone());
+            let (mut a2, mut b2) = (a, b);
+            let ok1 = solve_in_place(&mut a1, &mut b1);
+            let ok2 = solve_any(&mut a2, &mut b2);
+            assert_eq!(ok1, ok2, "case {case}");
+            let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            if ok1 {
+                assert_eq!(bits(&b1), bits(&b2), "case {case}");
+            }
+        }
+    }
 }

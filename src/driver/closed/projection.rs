@@ -17,13 +17,7 @@ fn sub_mass(chain: &Chain, pose: &ChainPose, open: &[usize]) -> Vec<f64> {
     let nf = open.len();
     let mut out = vec![0.0; nf * nf];
     let piv: Vec<(usize, [f64; 2])> = open.iter().map(|&d| chain.dof_pivot(pose, d)).collect();
-    for i in 0..nf {
-        for j in i..nf {
-            let v = chain.mass_entry_of(pose, piv[i], piv[j]);
-            out[i * nf + j] = v;
-            out[j * nf + i] = v;
-        }
-    }
+    chain.mass_block_into(pose, &piv, &mut out, nf);
     out
 }
 

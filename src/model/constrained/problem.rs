@@ -41,6 +41,10 @@ pub(crate) struct ConstrainedProblem {
     /// A feasible point on the free generators alone (minimum norm, zero elsewhere): the
     /// configuration as it is satisfies its closure. Scaled, length `p`.
     pub start: Vec<f64>,
+    /// The factors of every generator's constraint columns with every row (`reduce_rows`'s,
+    /// when it kept all the rows): the definiteness check and the first branch's rows factor
+    /// the same matrix (the same bits) and take them from here.
+    all_qr: Option<PivotedQr>,
 }
 
 /// Buffers of the face solves.
@@ -208,6 +212,7 @@ impl ConstrainedProblem {
             c: rows,
             r: rr,
             start: vec![0.0; p],
+            all_qr: None,
         };
         problem.reduce_rows()?;
         problem.find_start()?;
@@ -261,7 +266,9 @@ impl ConstrainedProblem {
                 ),
             ));
         }
-        if qr.rank < nc {
+        if qr.rank == nc {
+            self.all_qr = Some(qr);
+        } else {
             let keep: Vec<usize> = qr.perm[..qr.rank].to_vec();
             let mut c = Vec::with_capacity(keep.len() * p);
             for &row in &keep {
@@ -276,6 +283,16 @@ impl ConstrainedProblem {
 
     fn rmax(&self) -> f64 {
         self.r.iter().fold(0.0_f64, |a, v| a.max(v.abs()))
+    }
+
+    /// The stored factors of every generator's columns with every row, when `set` is every
+    /// generator in order and `rows` every row in order (the matrix they were computed from).
+    fn all_factors(&self, set: &[usize], rows: &[usize]) -> Option<&PivotedQr> {
+        let identity =
+            |v: &[usize], n: usize| v.len() == n && v.iter().enumerate().all(|(i, &x)| i == x);
+        self.all_qr
+            .as_ref()
+            .filter(|_| identity(set, self.p()) && identity(rows, self.nc))
     }
 
     /// The minimum-norm point of the free generators that satisfies the constraints.
@@ -312,13 +329,17 @@ impl ConstrainedProblem {
         u: &mut [f64],
     ) -> f64 {
         let (k, c, p) = (set.len(), rows.len(), self.p());
-        let mut kt = vec![0.0; k * c];
-        for (i, &s) in set.iter().enumerate() {
-            for (j, &row) in rows.iter().enumerate() {
-                kt[i * c + j] = self.c[row * p + s];
+        if let Some(all) = self.all_factors(set, rows) {
+            qr.clone_from(all);
+        } else {
+            let mut kt = vec![0.0; k * c];
+            for (i, &s) in set.iter().enumerate() {
+                for (j, &row) in rows.iter().enumerate() {
+                    kt[i * c + j] = self.c[row * p + s];
+                }
             }
+            qr.factor(&mut kt, k, c, RANK_TOLERANCE);
         }
-        qr.factor(&mut kt, k, c, RANK_TOLERANCE);
         let rhs: Vec<f64> = rows.iter().map(|&row| self.r[row]).collect();
         u.iter_mut().for_each(|x| *x = 0.0);
         let residual = qr.solve_range(&rhs, u);
@@ -338,12 +359,16 @@ impl ConstrainedProblem {
     ) -> Result<Option<usize>, RockingError> {
         let (k, p) = (set.len(), self.p());
         let c = rows.len();
-        ws.kt.clear();
-        ws.kt.reserve(k * c);
-        for &s in set {
-            ws.kt.extend(rows.iter().map(|&row| self.c[row * p + s]));
+        if let Some(all) = self.all_factors(set, rows) {
+            ws.qr.clone_from(all);
+        } else {
+            ws.kt.clear();
+            ws.kt.reserve(k * c);
+            for &s in set {
+                ws.kt.extend(rows.iter().map(|&row| self.c[row * p + s]));
+            }
+            ws.qr.factor(&mut ws.kt, k, c, RANK_TOLERANCE);
         }
-        ws.qr.factor(&mut ws.kt, k, c, RANK_TOLERANCE);
         let rank = ws.qr.rank;
         ws.rhs.clear();
         ws.rhs.extend(rows.iter().map(|&row| self.r[row]));
@@ -433,14 +458,33 @@ impl ConstrainedProblem {
         }))
     }
 
-    /// Gradient `b̂_j − (Â ŷ)_j − (Ĉᵀ μ)_j` of generator `j` at the point `y` (length `p`,
-    /// non-zero only on `set`), with the multipliers `mu` (length `nc`).
-    pub fn gradient(&self, j: usize, set: &[usize], y: &[f64], mu: &[f64]) -> f64 {
+    /// Gradients `b̂_j − (Â ŷ)_j − (Ĉᵀ μ)_j` of every generator `j` at the point `y` (length `p`,
+    /// non-zero only on `set`) with the multipliers `mu` (length `nc`), into `out` (length `p`):
+    /// `(Â ŷ)_j` summed over `set` in its order from −0.0 and `(Ĉᵀ μ)_j` over the rows in
+    /// order, as `sum()` — `Â` is symmetric to the bit (built mirrored, each entry scaled by the
+    /// product of its two scales), so row `s` of it holds column `s`, and the sums of all `j`
+    /// run along rows.
+    pub fn gradients(&self, set: &[usize], y: &[f64], mu: &[f64], out: &mut Vec<f64>) {
         let p = self.p();
-        let row = &self.cone.a[j * p..(j + 1) * p];
-        let ay: f64 = set.iter().map(|&s| row[s] * y[s]).sum();
-        let cm: f64 = (0..self.nc).map(|r| self.c[r * p + j] * mu[r]).sum();
-        self.cone.b[j] - ay - cm
+        let mut ay = std::mem::take(out);
+        ay.clear();
+        ay.resize(p, -0.0);
+        for &s in set {
+            let ys = y[s];
+            for (acc, a) in ay.iter_mut().zip(&self.cone.a[s * p..(s + 1) * p]) {
+                *acc += a * ys;
+            }
+        }
+        let mut cm = vec![-0.0; p];
+        for (r, &m) in mu.iter().enumerate().take(self.nc) {
+            for (acc, c) in cm.iter_mut().zip(&self.c[r * p..(r + 1) * p]) {
+                *acc += c * m;
+            }
+        }
+        for ((g, &b), &c) in ay.iter_mut().zip(&self.cone.b).zip(&cm) {
+            *g = b - *g - c;
+        }
+        *out = ay;
     }
 }
 

@@ -126,6 +126,7 @@ fn relaxed(
     set.iter().for_each(|&i| in_set[i] = true);
     complete_rank(problem, &mut set, &mut in_set, &allowed, &rows);
     let mut blocked = vec![false; p];
+    let mut gradients = Vec::with_capacity(p);
     let mut last_entered: Option<usize> = None;
     let max_iterations = 20 * p + 200;
     let mut zero_steps = 0usize;
@@ -213,11 +214,12 @@ fn relaxed(
                 // The face is optimal: free the bounded generator of largest gradient.
                 let mut entering = None;
                 let mut best = cone.threshold;
+                problem.gradients(&set, &y, &ws.mu, &mut gradients);
                 for j in 0..p {
                     if in_set[j] || !allowed[j] || !cone.gens[j].bounded || blocked[j] {
                         continue;
                     }
-                    let w = problem.gradient(j, &set, &y, &ws.mu);
+                    let w = gradients[j];
                     if w > best {
                         entering = Some(j);
                         if bland {
