@@ -75,6 +75,12 @@ pub struct SchemeOptions {
     /// Opt-in error control ([`super::refine`]): a step whose own energy error exceeds this
     /// fraction of the run's energy scale is redone as two half steps. `None`: off.
     pub energy_tolerance: Option<f64>,
+    /// Opt-in: remove the one-signed energy errors of the located impacts at their source
+    /// ([`super::consistent`]): the persistent contacts keep their law through an impact, the
+    /// trial sub-step of a landing is read before its projection, the other ends landing in it
+    /// are located too, up to [`super::consistent::MAX_SPLITS`] impacts a step, and a slip that
+    /// stops within a step is booked as friction. `false` (the default): the scheme as before.
+    pub energy_consistent: bool,
 }
 
 impl Default for SchemeOptions {
@@ -87,6 +93,7 @@ impl Default for SchemeOptions {
             project: true,
             gravity: crate::model::column::GRAVITY,
             energy_tolerance: None,
+            energy_consistent: false,
         }
     }
 }
@@ -182,6 +189,15 @@ pub struct Stepper {
     /// rates (the same function of the same state: the same numbers).
     pub(super) rates_fresh: bool,
     pub(super) missed: Vec<[Option<f64>; 2]>,
+    /// With `energy_consistent`: the sub-step leaves its positions unprojected (a landing's
+    /// trial, whose gap is read first), and the joints slipping before the sub-step's problem.
+    pub(super) skip_projection: bool,
+    pub(super) slipping_before: Vec<bool>,
+    /// With `energy_consistent`: the persistent ends before an impact (see
+    /// [`super::consistent`]).
+    pub(super) carried_before_impact: Vec<[bool; 2]>,
+    /// With `energy_consistent`: the ends landing first in a landing's trial.
+    pub(super) located_first: Vec<[bool; 2]>,
     pub(super) watching: bool,
     pub(super) missed_found: Option<f64>,
     /// Approach speed above which a landing is located (m/s): a tenth of what gravity gives in a
@@ -251,6 +267,10 @@ impl Stepper {
             start_rates: vec![[[0.0; 2]; 2]; n],
             rates_fresh: false,
             missed: vec![[None; 2]; n],
+            skip_projection: false,
+            slipping_before: vec![false; n],
+            carried_before_impact: vec![[false; 2]; n],
+            located_first: vec![[false; 2]; n],
             watching: false,
             missed_found: None,
             v_split: 0.0,
@@ -329,6 +349,11 @@ impl Stepper {
         self.v_split = SPLIT_OPEN * self.options.gravity * h;
         self.v_touch = SPLIT_TOUCHING * self.options.gravity * h;
         let mut splits = 0;
+        let max_splits = if self.options.energy_consistent {
+            super::consistent::MAX_SPLITS
+        } else {
+            MAX_SPLITS
+        };
         loop {
             let remaining = t_end - self.t;
             if remaining <= 1e-12 * h {
@@ -336,14 +361,14 @@ impl Stepper {
                 return Ok(());
             }
             self.record_start_rates();
-            if self.options.locate_impacts && splits < MAX_SPLITS {
+            if self.options.locate_impacts && splits < max_splits {
                 if let Some((tau, _)) = self.next_landing(remaining) {
                     splits += 1;
                     self.locate_and_impact(tau, remaining, motion)?;
                     continue;
                 }
             }
-            let watch = self.options.locate_impacts && splits < MAX_SPLITS;
+            let watch = self.options.locate_impacts && splits < max_splits;
             if watch {
                 self.save();
             }
@@ -473,6 +498,11 @@ impl Stepper {
                     .set_offsets(k, [b[0] + shift[0], b[1] + shift[1], b[2] + shift[2]]);
             }
         }
+        if self.options.energy_consistent {
+            for (was, st) in self.slipping_before.iter_mut().zip(&self.statuses) {
+                *was = st.slip != Slip::Stick;
+            }
+        }
         let report = self.problem.solve(&mut self.statuses)?;
         self.counters.solves += 1;
         self.counters.iterations += report.iterations as u64;
@@ -532,7 +562,7 @@ impl Stepper {
                 return Ok(());
             }
         }
-        if self.options.project {
+        if self.options.project && !self.skip_projection {
             self.project(a1, true)?;
         }
         self.counters.substeps += 1;
