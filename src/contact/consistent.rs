@@ -12,7 +12,10 @@
 //!   step, a fresh contact under plain Moreau–Jean (restitution zero), which pumps `P U⁻ / 2` (its
 //!   `U⁻` the turning of the contact, `O(h)`) into the column — the first-order error the midpoint
 //!   rule at persistent contacts removes on every other step. Here an end that was persistent
-//!   before the impact and is still on its face after it stays persistent.
+//!   before the impact and is still on its face after it stays persistent; and in a sub-step
+//!   every end on its face and not approaching gets the midpoint law, whether it carried an
+//!   impulse before or not (an end unloaded for a step, or just put back on its face, is the same
+//!   contact: under restitution zero it gains `P U⁻ / 2` alike).
 //! - **A landing read after its projection.** The trial sub-step to the linearly predicted
 //!   instant overshoots an end that accelerates onto its face; the scheme's projection at the end
 //!   of the sub-step pushed that end back out (raising the column: the projection's work is a

@@ -76,8 +76,9 @@ pub struct SchemeOptions {
     /// fraction of the run's energy scale is redone as two half steps. `None`: off.
     pub energy_tolerance: Option<f64>,
     /// Opt-in: remove the one-signed energy errors of the located impacts at their source
-    /// ([`super::consistent`]): the persistent contacts keep their law through an impact, the
-    /// trial sub-step of a landing is read before its projection, the other ends landing in it
+    /// ([`super::consistent`]): the persistent contacts keep their law through an impact (and
+    /// every end on its face and not approaching has it), the trial sub-step of a landing is read
+    /// before its projection, the other ends landing in it
     /// are located too, up to [`super::consistent::MAX_SPLITS`] impacts a step, and a slip that
     /// stops within a step is booked as friction. `false` (the default): the scheme as before.
     pub energy_consistent: bool,
@@ -469,7 +470,9 @@ impl Stepper {
         self.fill_contacts();
         self.problem.set(&self.contacts, &self.v_free);
         // Persistent contacts: an end that carried an impulse in the last step and is not
-        // arriving (faster than `v_touch`) obeys Moreau's law with restitution one,
+        // arriving (faster than `v_touch`) — with `energy_consistent`, also an end on its face
+        // and not approaching, whether it carried an impulse or not — obeys Moreau's law with
+        // restitution one,
         // `0 ≤ U⁺ + U⁻ ⊥ P ≥ 0`: its relative velocity before the step, on the rows of the
         // step's midpoint, is only the turning of the contact with the drums, and the midpoint
         // rule makes the contact do no work (Acary 2016, the energy of the θ = ½ scheme). A
@@ -482,8 +485,10 @@ impl Stepper {
             for c in 0..2 {
                 if self.options.persistent_restitution
                     && self.contacts[k].active[c]
-                    && self.carried[k][c]
-                    && ub[c] >= -self.v_touch
+                    && ((self.carried[k][c] && ub[c] >= -self.v_touch)
+                        || (self.options.energy_consistent
+                            && ub[c] >= 0.0
+                            && self.geometry[k].ends[c].gap <= self.contact_gap))
                 {
                     shift[c] = ub[c];
                 }
