@@ -103,7 +103,7 @@ fn energy_residual_is_within_a_thousandth_with_the_error_control() {
 
 /// The same target with the located impacts' one-signed errors removed at their source
 /// (`--consistent`, `SchemeOptions::energy_consistent`, docs/energy-control.md), no step
-/// refined: every run of the reduced suite within 0.1 % (largest 1.4e-4 when this was written),
+/// refined: every run of the reduced suite within 0.1 % (largest 5.2e-5 when this was written),
 /// the identity closing at round-off.
 #[test]
 fn energy_residual_is_within_a_thousandth_with_consistent_impacts() {
