@@ -11,7 +11,7 @@
 //!   column's weight before the impact but no share of the impact is then, for the rest of the
 //!   step, a fresh contact under plain Moreau–Jean (restitution zero), which pumps `P U⁻ / 2` (its
 //!   `U⁻` the turning of the contact, `O(h)`) into the column — the first-order error the midpoint
-//!   rule at persistent contacts removes on every other step. Here an end that was persistent
+//!   rule at persistent contacts removes on the steps without an impact. Here an end that was persistent
 //!   before the impact and is still on its face after it stays persistent; and in a sub-step
 //!   every end on its face and not approaching gets the midpoint law, whether it carried an
 //!   impulse before or not (an end unloaded for a step, or just put back on its face, is the same
