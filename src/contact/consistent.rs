@@ -11,11 +11,11 @@
 //!   column's weight before the impact but no share of the impact is then, for the rest of the
 //!   step, a fresh contact under plain Moreau–Jean (restitution zero), which pumps `P U⁻ / 2` (its
 //!   `U⁻` the turning of the contact, `O(h)`) into the column — the first-order error the midpoint
-//!   rule at persistent contacts removes on the steps without an impact. Here an end that was persistent
-//!   before the impact and is still on its face after it stays persistent; and in a sub-step
-//!   every end on its face and not approaching gets the midpoint law, whether it carried an
-//!   impulse before or not (an end unloaded for a step, or just put back on its face, is the same
-//!   contact: under restitution zero it gains `P U⁻ / 2` alike).
+//!   rule at persistent contacts removes on the steps without an impact. Here an end that was
+//!   persistent before the impact and is still on its face after it stays persistent; and in a
+//!   sub-step every end on its face and not approaching gets the midpoint law, whether it carried
+//!   an impulse before or not (an end unloaded for a step, or just put back on its face, is the
+//!   same contact: under restitution zero it gains `P U⁻ / 2` alike).
 //! - **A landing read after its projection.** The trial sub-step to the linearly predicted
 //!   instant overshoots an end that accelerates onto its face; the scheme's projection at the end
 //!   of the sub-step pushed that end back out (raising the column: the projection's work is a
@@ -32,7 +32,11 @@
 //!
 //! And one misnomer: a joint slipping at the start of a sub-step and sticking at its end does the
 //! work of its Coulomb impulse along the step's mean slip rate (the slip stopping: friction),
-//! which the accounts booked as the scheme's error; here it is friction.
+//! which the accounts booked as the scheme's error; here it is friction. And a column that closes
+//! and sticks everywhere in a sub-step is stopped at the end of the sub-step (its kinetic energy
+//! removed at fixed positions, booked as impact), not before its positions advance: the
+//! velocities the midpoint law keeps through impacts are not round-off, and removing them first
+//! would leave the energy identity short.
 
 use super::moreau::{StepError, Stepper};
 use crate::ground::GroundMotion;
