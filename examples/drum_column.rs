@@ -5,8 +5,12 @@
 //! ```text
 //! cargo run --release --example drum_column -- --drums 10 --width 1 --height 1 \
 //!     --record RECORD.AT2 --pga 4 --mu 0.5 --dt 0.001 [--duration 30] [--impacts 1] \
-//!     [--scheme moreau|auto] [--locate 0|1] [--persistent 0|1] [--projection 0|1]
+//!     [--scheme moreau|auto] [--locate 0|1] [--persistent 0|1] [--projection 0|1] \
+//!     [--consistent 0|1] [--energy-tol T]
 //! ```
+//!
+//! `--consistent 1`: `SchemeOptions::energy_consistent` (docs/energy-control.md); `--energy-tol`:
+//! the error control.
 //!
 //! `--locate 0 --persistent 0 --projection 0` (all default 1) is plain Moreau–Jean, the scheme
 //! of the Siconos peer: no impact located inside the step, restitution zero at every contact
@@ -33,6 +37,8 @@ fn main() {
     let mut impacts = 1u32;
     let mut automatic = false;
     let (mut locate, mut persistent, mut projection) = (true, true, true);
+    let mut consistent = false;
+    let mut energy_tol: Option<f64> = None;
     while let Some(a) = args.next() {
         let v = args.next().unwrap_or_else(|| panic!("{a} needs a value"));
         match a.as_str() {
@@ -49,6 +55,8 @@ fn main() {
             "--locate" => locate = v != "0",
             "--persistent" => persistent = v != "0",
             "--projection" => projection = v != "0",
+            "--consistent" => consistent = v != "0",
+            "--energy-tol" => energy_tol = Some(v.parse().unwrap()),
             other => panic!("unknown argument {other}"),
         }
     }
@@ -63,6 +71,8 @@ fn main() {
     opts.scheme.locate_impacts = locate;
     opts.scheme.persistent_restitution = persistent;
     opts.scheme.project = projection;
+    opts.scheme.energy_consistent = consistent;
+    opts.scheme.energy_tolerance = energy_tol;
     let t0 = Instant::now();
     let out = if automatic {
         let mut driver = SimulationOptions::default();

@@ -85,7 +85,11 @@ impl Stepper {
             }
             if p[2] != 0.0 {
                 let w = -p[2] * 0.5 * (ub[2] + ua[2]);
-                if self.statuses[k].slip != Slip::Stick {
+                if self.statuses[k].slip != Slip::Stick
+                    || (self.options.energy_consistent && !impact && self.slipping_before[k])
+                {
+                    // Slipping, or (energy_consistent) a slip that stopped within the step: the
+                    // Coulomb impulse's work along the step's mean slip rate is friction.
                     self.energy.friction += w;
                 } else if approaching {
                     self.energy.impact += w;

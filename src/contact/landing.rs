@@ -207,6 +207,9 @@ impl Stepper {
             .rates(&self.geometry[k0].ends[c0].rows, &self.v, k0);
         self.save();
         let t0 = self.t;
+        if self.options.energy_consistent {
+            return self.locate_consistently(tau, landing, motion, (k0, c0), (g0, u0));
+        }
         self.substep(tau, motion, Some(landing))?;
         let g1 = self.geometry[k0].ends[c0].gap;
         let (u1, _) = self
@@ -302,11 +305,17 @@ impl Stepper {
             self.v_free = before;
         }
         // Landed ends that hold an impulse are put back onto their faces.
+        if self.options.energy_consistent {
+            self.carried_before_impact.copy_from_slice(&self.carried);
+        }
         for k in 0..n {
             let p = self.problem.impulses(k);
             self.carried[k] = [p[0] > 0.0, p[1] > 0.0];
         }
         self.project(a_g, true)?;
+        if self.options.energy_consistent {
+            self.keep_persistent_through_impact();
+        }
         self.counters.located_impacts += 1;
         for k in 0..n {
             for c in 0..2 {

@@ -20,7 +20,8 @@
 //! - [`moreau`]: one time step; [`landing`]: impacts located inside it and the consecutive-impact
 //!   law; [`projection`]: the positions projected back onto the contacts; [`rest`]: the step of a
 //!   column at rest; [`accounts`]: the energy accounts and work counters; [`refine`]: the opt-in
-//!   error control (a step whose energy error is too large redone as two halves).
+//!   error control (a step whose energy error is too large redone as two halves);
+//!   [`consistent`]: the opt-in removal of the located impacts' one-signed energy errors.
 //! - [`simulation`]: a whole run: joint modes, events, stops, slips, energy; its options are
 //!   [`options`], what it gives back (events, stops, energy, history, outcome) [`outcome`].
 //! - [`auto`]: the automatic scheme: the event-driven driver where events are few, this scheme
@@ -30,6 +31,7 @@ pub mod accounts;
 pub mod active_set;
 pub mod auto;
 mod blocks;
+pub mod consistent;
 pub mod drums;
 pub mod fallback;
 pub mod friction;

@@ -75,6 +75,13 @@ pub struct SchemeOptions {
     /// Opt-in error control ([`super::refine`]): a step whose own energy error exceeds this
     /// fraction of the run's energy scale is redone as two half steps. `None`: off.
     pub energy_tolerance: Option<f64>,
+    /// Opt-in: remove the one-signed energy errors of the located impacts at their source
+    /// ([`super::consistent`]): the persistent contacts keep their law through an impact (and
+    /// every end on its face and not approaching has it), the trial sub-step of a landing is read
+    /// before its projection, the other ends landing in it
+    /// are located too, up to [`super::consistent::MAX_SPLITS`] impacts a step, and a slip that
+    /// stops within a step is booked as friction. `false` (the default): the scheme as before.
+    pub energy_consistent: bool,
 }
 
 impl Default for SchemeOptions {
@@ -87,6 +94,7 @@ impl Default for SchemeOptions {
             project: true,
             gravity: crate::model::column::GRAVITY,
             energy_tolerance: None,
+            energy_consistent: false,
         }
     }
 }
@@ -182,6 +190,15 @@ pub struct Stepper {
     /// rates (the same function of the same state: the same numbers).
     pub(super) rates_fresh: bool,
     pub(super) missed: Vec<[Option<f64>; 2]>,
+    /// With `energy_consistent`: the sub-step leaves its positions unprojected (a landing's
+    /// trial, whose gap is read first), and the joints slipping before the sub-step's problem.
+    pub(super) skip_projection: bool,
+    pub(super) slipping_before: Vec<bool>,
+    /// With `energy_consistent`: the persistent ends before an impact (see
+    /// [`super::consistent`]).
+    pub(super) carried_before_impact: Vec<[bool; 2]>,
+    /// With `energy_consistent`: the ends landing first in a landing's trial.
+    pub(super) located_first: Vec<[bool; 2]>,
     pub(super) watching: bool,
     pub(super) missed_found: Option<f64>,
     /// Approach speed above which a landing is located (m/s): a tenth of what gravity gives in a
@@ -251,6 +268,10 @@ impl Stepper {
             start_rates: vec![[[0.0; 2]; 2]; n],
             rates_fresh: false,
             missed: vec![[None; 2]; n],
+            skip_projection: false,
+            slipping_before: vec![false; n],
+            carried_before_impact: vec![[false; 2]; n],
+            located_first: vec![[false; 2]; n],
             watching: false,
             missed_found: None,
             v_split: 0.0,
@@ -329,6 +350,11 @@ impl Stepper {
         self.v_split = SPLIT_OPEN * self.options.gravity * h;
         self.v_touch = SPLIT_TOUCHING * self.options.gravity * h;
         let mut splits = 0;
+        let max_splits = if self.options.energy_consistent {
+            super::consistent::MAX_SPLITS
+        } else {
+            MAX_SPLITS
+        };
         loop {
             let remaining = t_end - self.t;
             if remaining <= 1e-12 * h {
@@ -336,14 +362,14 @@ impl Stepper {
                 return Ok(());
             }
             self.record_start_rates();
-            if self.options.locate_impacts && splits < MAX_SPLITS {
+            if self.options.locate_impacts && splits < max_splits {
                 if let Some((tau, _)) = self.next_landing(remaining) {
                     splits += 1;
                     self.locate_and_impact(tau, remaining, motion)?;
                     continue;
                 }
             }
-            let watch = self.options.locate_impacts && splits < MAX_SPLITS;
+            let watch = self.options.locate_impacts && splits < max_splits;
             if watch {
                 self.save();
             }
@@ -444,7 +470,9 @@ impl Stepper {
         self.fill_contacts();
         self.problem.set(&self.contacts, &self.v_free);
         // Persistent contacts: an end that carried an impulse in the last step and is not
-        // arriving (faster than `v_touch`) obeys Moreau's law with restitution one,
+        // arriving (faster than `v_touch`) — with `energy_consistent`, also an end on its face
+        // and not approaching, whether it carried an impulse or not — obeys Moreau's law with
+        // restitution one,
         // `0 ≤ U⁺ + U⁻ ⊥ P ≥ 0`: its relative velocity before the step, on the rows of the
         // step's midpoint, is only the turning of the contact with the drums, and the midpoint
         // rule makes the contact do no work (Acary 2016, the energy of the θ = ½ scheme). A
@@ -457,8 +485,10 @@ impl Stepper {
             for c in 0..2 {
                 if self.options.persistent_restitution
                     && self.contacts[k].active[c]
-                    && self.carried[k][c]
-                    && ub[c] >= -self.v_touch
+                    && ((self.carried[k][c] && ub[c] >= -self.v_touch)
+                        || (self.options.energy_consistent
+                            && ub[c] >= 0.0
+                            && self.geometry[k].ends[c].gap <= self.contact_gap))
                 {
                     shift[c] = ub[c];
                 }
@@ -471,6 +501,11 @@ impl Stepper {
                 let b = self.problem.free_rates(k);
                 self.problem
                     .set_offsets(k, [b[0] + shift[0], b[1] + shift[1], b[2] + shift[2]]);
+            }
+        }
+        if self.options.energy_consistent {
+            for (was, st) in self.slipping_before.iter_mut().zip(&self.statuses) {
+                *was = st.slip != Slip::Stick;
             }
         }
         let report = self.problem.solve(&mut self.statuses)?;
@@ -488,7 +523,13 @@ impl Stepper {
                 && self.statuses[k].closed == [true, true]
                 && self.statuses[k].slip == Slip::Stick
         });
-        if all_stuck {
+        // With `energy_consistent` the step is finished with the solved velocities and they are
+        // removed at its end (a velocity jump at fixed positions, whose energy is exactly the
+        // kinetic energy booked): the persistent law keeps through impacts velocities that are
+        // not round-off, and removing them before the positions are advanced would leave the
+        // identity short of `f·h v/2` (see `super::consistent`).
+        let snap_at_end = all_stuck && self.options.energy_consistent;
+        if all_stuck && !snap_at_end {
             self.energy.impact += self.drums.kinetic_energy(&v_new);
             v_new.iter_mut().for_each(|x| *x = 0.0);
         }
@@ -514,6 +555,10 @@ impl Stepper {
         let before = std::mem::replace(&mut self.v, v_new);
         self.account_contact_work(None, false);
         self.v_free = before;
+        if snap_at_end {
+            self.energy.impact += self.drums.kinetic_energy(&self.v);
+            self.v.iter_mut().for_each(|x| *x = 0.0);
+        }
         std::mem::swap(&mut self.q, &mut self.q_next);
         // Ends that carried an impulse go back onto their faces.
         for k in 0..n {
@@ -532,7 +577,7 @@ impl Stepper {
                 return Ok(());
             }
         }
-        if self.options.project {
+        if self.options.project && !self.skip_projection {
             self.project(a1, true)?;
         }
         self.counters.substeps += 1;

@@ -8,6 +8,8 @@
 //! "scheme": "moreau"          ("event_driven", "moreau" or "auto"; default: "moreau" when a
 //!                              joint may slide or fly, "event_driven" otherwise)
 //! "energy_tolerance": 1e-6    (moreau, auto: the error control, `crate::contact::refine`)
+//! "energy_consistent": true   (moreau, auto: the located impacts without their one-signed
+//!                              energy errors, `crate::contact::consistent`; default false)
 //! ```
 //! `"auto"`: the event-driven driver where events are few, Moreau–Jean where they crowd
 //! (`crate::contact::auto`, docs/auto-scheme.md); the driver's own settings
@@ -95,6 +97,13 @@ pub(super) fn scheme(spec: &SceneSpec) -> Result<SchemeChoice, SceneError> {
                  stepping)",
             ));
         }
+        if spec.energy_consistent {
+            return Err(err(
+                "energy_consistent",
+                "applies to schemes \"moreau\" and \"auto\" (the located impacts of the time \
+                 stepping)",
+            ));
+        }
         if let Some(FrictionSpec::PerJoint(_)) = spec.friction {
             return Err(err(
                 "friction",
@@ -158,6 +167,7 @@ pub(super) fn drum_options(spec: &SceneSpec, column: &Column) -> Result<DrumOpti
             n_impacts: spec.impacts,
             gravity: spec.gravity.unwrap_or(GRAVITY),
             energy_tolerance: spec.energy_tolerance,
+            energy_consistent: spec.energy_consistent,
             ..SchemeOptions::default()
         },
         continue_until_fallen: spec.continue_until_fallen,
@@ -229,6 +239,8 @@ mod tests {
         assert_eq!(s.contact.unwrap().on_sliding, OnSliding::Slide);
         let s = parse(r#", "scheme": "auto", "energy_tolerance": 1e-6"#).unwrap();
         assert_eq!(s.contact.unwrap().scheme.energy_tolerance, Some(1e-6));
+        let s = parse(r#", "scheme": "moreau", "energy_consistent": true"#).unwrap();
+        assert!(s.contact.unwrap().scheme.energy_consistent);
         let s = parse(r#", "scheme": "moreau", "friction": 0.4"#).unwrap();
         let c = s.contact.unwrap();
         assert_eq!(
@@ -274,6 +286,7 @@ mod tests {
             ),
             (r#", "friction": "much""#, "friction"),
             (r#", "energy_tolerance": 1e-6"#, "energy_tolerance"),
+            (r#", "energy_consistent": true"#, "energy_consistent"),
             (
                 r#", "on_sliding": "slide", "energy_tolerance": 0"#,
                 "energy_tolerance",

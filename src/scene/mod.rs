@@ -151,6 +151,10 @@ pub struct SceneSpec {
     /// none, `crate::contact::refine`).
     #[serde(default)]
     pub energy_tolerance: Option<f64>,
+    /// Schemes "moreau" and "auto": remove the located impacts' one-signed energy errors at
+    /// their source (default false, `crate::contact::consistent`).
+    #[serde(default)]
+    pub energy_consistent: bool,
     /// Exact Lagrangian velocity terms (default false: thesis Eq. 6).
     #[serde(default)]
     pub exact_velocity_terms: bool,

@@ -63,6 +63,10 @@ pub struct DrumsBenchArgs {
     /// `refined,refine_floor`.
     #[arg(long)]
     pub energy_tol: Option<f64>,
+    /// The scheme's located impacts without their one-signed energy errors
+    /// (`SchemeOptions::energy_consistent`, docs/energy-control.md); with `--energy-tol`, both.
+    #[arg(long)]
+    pub consistent: bool,
     /// Threads (default: every core).
     #[arg(long, value_parser = count)]
     pub threads: Option<usize>,
@@ -121,7 +125,13 @@ struct Run {
     cpu: f64,
 }
 
-fn run_case(case: &Case, rec: &Record, dt: f64, tol: Option<f64>) -> Result<Run, String> {
+fn run_case(
+    case: &Case,
+    rec: &Record,
+    dt: f64,
+    tol: Option<f64>,
+    consistent: bool,
+) -> Result<Run, String> {
     let col = Column::new(
         (0..case.n)
             .map(|_| Block::rectangle(case.w, case.h, 2500.0 * case.w * case.h))
@@ -136,6 +146,7 @@ fn run_case(case: &Case, rec: &Record, dt: f64, tol: Option<f64>) -> Result<Run,
         ..DrumOptions::quiet(duration, case.mu, 2)
     };
     opts.scheme.energy_tolerance = tol;
+    opts.scheme.energy_consistent = consistent;
     let t0 = Instant::now();
     let out = simulate(&col, &motion, &opts, None).map_err(|e| e.to_string())?;
     let cpu = t0.elapsed().as_secs_f64();
@@ -262,7 +273,7 @@ pub fn run(args: &DrumsBenchArgs) -> Result<(), String> {
         .map(|c| {
             let runs = steps
                 .iter()
-                .map(|&d| run_case(c, &records[c.record], d, args.energy_tol))
+                .map(|&d| run_case(c, &records[c.record], d, args.energy_tol, args.consistent))
                 .collect::<Result<Vec<Run>, String>>();
             bar.inc(1);
             runs
@@ -278,6 +289,12 @@ pub fn run(args: &DrumsBenchArgs) -> Result<(), String> {
             text,
             "\nError control (energy tolerance {tol:e} of the run's scale per step): {refined} \
              steps redone as two halves, {floor} kept at dt / 64 above the tolerance."
+        );
+    }
+    if args.consistent {
+        let _ = writeln!(
+            text,
+            "\nLocated impacts without their one-signed energy errors (--consistent)."
         );
     }
     print!("{text}");
