@@ -9,11 +9,13 @@
 
 #![allow(clippy::needless_range_loop)]
 
+mod common;
+
 use proptest::prelude::*;
 use rocking::chain::arch::VoussoirArch;
 use rocking::chain::colonnade::CappedColonnade;
 use rocking::chain::Chain;
-use rocking::model::column::{Block, Column, GRAVITY};
+use rocking::model::column::{Block, GRAVITY};
 use rocking::{
     impact_model, impact_model_constrained, opening_model, opening_model_constrained, ErrorKind,
     ModelOptions, Solver, Status,

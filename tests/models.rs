@@ -7,72 +7,12 @@
 
 mod common;
 
+use common::column_scene::column_scene;
 use common::compare::{assert_printed, close};
 use proptest::prelude::*;
 use rocking::model::column::{Block, Column, GRAVITY};
 use rocking::samples::{PRIETO_CUT_CORNERS, TABLE_1_HOUSNER};
 use rocking::{impact_model, opening_model, ModelOptions, Solver, Status};
-
-#[derive(Clone, Debug)]
-struct Scene {
-    column: Column,
-    statuses: Vec<Status>,
-    phi: Vec<f64>,
-    rates: Vec<f64>,
-    closing: usize,
-    ground_acc: f64,
-}
-
-fn scene() -> impl Strategy<Value = Scene> {
-    (1usize..=6)
-        .prop_flat_map(|n| {
-            (
-                prop::collection::vec((0.2f64..2.0, 0.3f64..3.0, 1.0f64..100.0), n),
-                prop::collection::vec(-1i8..=1, n),
-                prop::collection::vec(0.001f64..0.3, n),
-                prop::collection::vec(-2.0f64..2.0, n),
-                0..n,
-                -3.0f64..3.0,
-            )
-        })
-        .prop_map(|(blocks, status, angle, rate, closing, acc)| {
-            let n = blocks.len();
-            let column = Column::new(
-                blocks
-                    .iter()
-                    .map(|&(w, h, m)| Block::rectangle(w, h, m))
-                    .collect(),
-            )
-            .unwrap();
-            let mut statuses: Vec<Status> = status
-                .iter()
-                .map(|&s| Status::from_i8(s).unwrap())
-                .collect();
-            if statuses[closing] == Status::Closed {
-                statuses[closing] = Status::OpenLeft;
-            }
-            let mut phi = vec![0.0; 2 * n];
-            let mut rates = vec![0.0; 2 * n];
-            for k in 0..n {
-                if let Some(d) = statuses[k].dof(k, n) {
-                    phi[d] = statuses[k].sign() * angle[k];
-                    rates[d] = rate[k];
-                }
-            }
-            // The closing DOF moves towards zero.
-            let d = statuses[closing].dof(closing, n).unwrap();
-            phi[d] = statuses[closing].sign() * 1e-9;
-            rates[d] = -statuses[closing].sign() * (0.05 + rate[closing].abs());
-            Scene {
-                column,
-                statuses,
-                phi,
-                rates,
-                closing,
-                ground_acc: acc * GRAVITY,
-            }
-        })
-}
 
 /// Agreement of the two solvers: `|a − b| ≤ 1e-9 · scale`.
 fn agree(a: f64, b: f64, scale: f64) -> bool {
@@ -87,7 +27,7 @@ proptest! {
     #![proptest_config(ProptestConfig { cases: 400, ..ProptestConfig::default() })]
 
     #[test]
-    fn impact_projection_equals_enumeration(s in scene(), n_impacts in 1u32..=3) {
+    fn impact_projection_equals_enumeration(s in column_scene(), n_impacts in 1u32..=3) {
         let n = s.column.n_interfaces();
         let mass = s.column.mass_matrix(&s.column.pose(&s.phi));
         let mut results = Vec::new();
@@ -123,7 +63,7 @@ proptest! {
     }
 
     #[test]
-    fn opening_projection_equals_enumeration(s in scene()) {
+    fn opening_projection_equals_enumeration(s in column_scene()) {
         let n = s.column.n_interfaces();
         let pose = s.column.pose(&s.phi);
         let mass = s.column.mass_matrix(&pose);

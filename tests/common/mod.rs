@@ -2,6 +2,7 @@
 //! (here), the harness's scenes (`scenes`), comparisons with printed numbers (`compare`).
 #![allow(dead_code)]
 
+pub mod column_scene;
 pub mod compare;
 pub mod scenes;
 
