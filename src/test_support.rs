@@ -23,3 +23,14 @@ pub(crate) fn assert_printed(value: f64, printed: Printed) {
 pub(crate) fn close(a: f64, b: f64, tol: f64) -> bool {
     (a - b).abs() <= tol
 }
+
+/// A xorshift64 generator from `seed`: each call gives the next value in `[0, 1)` (53 bits). The
+/// bit-for-bit tests of the exact fast paths draw their random inputs from it.
+pub(crate) fn uniform(mut seed: u64) -> impl FnMut() -> f64 {
+    move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 11) as f64 / (1u64 << 53) as f64
+    }
+}

@@ -407,13 +407,8 @@ mod tests {
     /// singular one.
     #[test]
     fn fixed_sizes_are_the_general_solve_bit_for_bit() {
-        let mut seed = 0x9e37_79b9_7f4a_7c15_u64;
-        let mut next = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-        };
+        let mut uniform = crate::test_support::uniform(0x9e37_79b9_7f4a_7c15_u64);
+        let mut next = move || uniform() - 0.5;
         for case in 0..600 {
             let n = 4 + case % 13;
             let mut a: Vec<f64> = (0..n * n).map(|_| next()).collect();

@@ -27,13 +27,7 @@ fn key(c: &Check) -> String {
 /// equations, small and large rotations, with and without the contact forces).
 #[test]
 fn small_columns_are_the_general_path_bit_for_bit() {
-    let mut seed = 987654321u64;
-    let mut rnd = || {
-        seed ^= seed << 13;
-        seed ^= seed >> 7;
-        seed ^= seed << 17;
-        (seed >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut rnd = crate::test_support::uniform(987654321u64);
     let three = Column::new(vec![
         Block::rectangle(0.5, 1.5, 200.0),
         Block::rectangle(0.4, 1.0, 120.0),

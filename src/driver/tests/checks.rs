@@ -51,13 +51,7 @@ fn reaction_test_agrees_with_check_configuration() {
     ])
     .unwrap();
     let n = 3;
-    let mut seed = 12345u64;
-    let mut rnd = || {
-        seed ^= seed << 13;
-        seed ^= seed >> 7;
-        seed ^= seed << 17;
-        (seed >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut rnd = crate::test_support::uniform(12345u64);
     for exact in [false, true] {
         let mut dynm = ColumnDynamics::new(&col, G, exact, 1e-12, 0.7);
         for _ in 0..300 {

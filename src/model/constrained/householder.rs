@@ -347,13 +347,8 @@ mod tests {
     /// rank, reflectors), on random matrices, with a dependent column, zero rows and signed zeros.
     #[test]
     fn three_columns_are_the_general_factor_bit_for_bit() {
-        let mut seed = 0x2545_f491_4f6c_dd1d_u64;
-        let mut next = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-        };
+        let mut uniform = crate::test_support::uniform(0x2545_f491_4f6c_dd1d_u64);
+        let mut next = move || uniform() - 0.5;
         for case in 0..400 {
             let k = 1 + case % 40;
             let mut kt: Vec<f64> = (0..3 * k).map(|_| next()).collect();
