@@ -73,3 +73,11 @@ mod tests {
         }
     }
 }
+
+/// `prefix` followed by `suffix`: `with_suffix("out/ff", "-oas.svg")` is `out/ff-oas.svg` (a
+/// prefix is a path and a file-name stem, not a folder).
+pub fn with_suffix(prefix: &Path, suffix: &str) -> std::path::PathBuf {
+    let mut s = prefix.as_os_str().to_owned();
+    s.push(suffix);
+    std::path::PathBuf::from(s)
+}

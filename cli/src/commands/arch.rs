@@ -133,9 +133,7 @@ fn run_oas(a: &ArchOasArgs) -> Result<(), String> {
     print_json(&ArchOasReport::of(&o, a.t1, seconds))?;
     if let Some(prefix) = &a.svg {
         for (name, chart) in oas_charts(&o, a.t1) {
-            let mut s = prefix.as_os_str().to_owned();
-            s.push(format!("-{name}.svg"));
-            chart.write(&PathBuf::from(s))?;
+            chart.write_named(prefix, name, false)?;
         }
     }
     Ok(())

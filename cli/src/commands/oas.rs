@@ -104,15 +104,7 @@ pub fn run(a: &OasArgs) -> Result<(), String> {
     }
     if let Some(prefix) = &a.svg {
         for (name, chart) in charts(&result) {
-            let file = |ext: &str| {
-                let mut s = prefix.as_os_str().to_owned();
-                s.push(format!("-{name}.{ext}"));
-                PathBuf::from(s)
-            };
-            chart.write(&file("svg"))?;
-            if a.png {
-                chart.write(&file("png"))?;
-            }
+            chart.write_named(prefix, name, a.png)?;
         }
     }
     Ok(())

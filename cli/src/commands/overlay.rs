@@ -328,15 +328,7 @@ pub fn run(files: &[PathBuf], svg: Option<&Path>, png: bool) -> Result<(), Strin
     print_json(&overlay)?;
     if let Some(prefix) = svg {
         for (name, chart) in charts(&reports) {
-            let file = |ext: &str| {
-                let mut s = prefix.as_os_str().to_owned();
-                s.push(format!("-{name}.{ext}"));
-                PathBuf::from(s)
-            };
-            chart.write(&file("svg"))?;
-            if png {
-                chart.write(&file("png"))?;
-            }
+            chart.write_named(prefix, name, png)?;
         }
     }
     Ok(())

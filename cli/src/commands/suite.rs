@@ -4,7 +4,7 @@
 //! of Eq. 21, 29, 30 against every record; `--merge` joins `--shard` runs (or `rocking oas --json`
 //! reports); `--svg`/`--png` draw the charts and `--csv` writes each curve.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::time::Instant;
 
 use clap::Args;
@@ -15,7 +15,7 @@ use serde::Deserialize;
 
 use super::suite_charts;
 use super::sweep::{OasGridArgs, Shard, SimulationArgs};
-use crate::output::{print_json, read_json, write_atomic};
+use crate::output::{print_json, read_json, with_suffix, write_atomic};
 use crate::progress;
 
 /// Options of `rocking suite`.
@@ -159,20 +159,10 @@ pub fn run(a: &SuiteArgs) -> Result<(), String> {
     }
     if let Some(prefix) = &a.svg {
         for (name, chart) in suite_charts::charts(&report) {
-            chart.write(&with_suffix(prefix, &format!("-{name}.svg")))?;
-            if a.png {
-                chart.write(&with_suffix(prefix, &format!("-{name}.png")))?;
-            }
+            chart.write_named(prefix, name, a.png)?;
         }
     }
     Ok(())
-}
-
-/// `prefix` followed by `suffix` (`PREFIX-oas.svg`).
-fn with_suffix(prefix: &Path, suffix: &str) -> PathBuf {
-    let mut s = prefix.as_os_str().to_owned();
-    s.push(suffix);
-    PathBuf::from(s)
 }
 
 /// `x` with three decimals, `-` when absent or not finite.

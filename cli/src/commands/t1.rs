@@ -262,16 +262,9 @@ pub fn run(a: &T1Args) -> Result<(), String> {
         }
     }
     if let Some(prefix) = &a.svg {
-        let chart = Correlation::of(&rows).chart();
-        let file = |ext: &str| {
-            let mut s = prefix.as_os_str().to_owned();
-            s.push(format!("-tp.{ext}"));
-            PathBuf::from(s)
-        };
-        chart.write(&file("svg"))?;
-        if a.png {
-            chart.write(&file("png"))?;
-        }
+        Correlation::of(&rows)
+            .chart()
+            .write_named(prefix, "tp", a.png)?;
     }
     Ok(())
 }

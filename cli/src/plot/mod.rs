@@ -294,6 +294,15 @@ impl Chart {
         crate::output::write_atomic(path, &bytes)
     }
 
+    /// Writes `PREFIX-NAME.svg`, and `PREFIX-NAME.png` as well if `png`.
+    pub fn write_named(&self, prefix: &Path, name: &str, png: bool) -> Result<(), String> {
+        self.write(&crate::output::with_suffix(prefix, &format!("-{name}.svg")))?;
+        if png {
+            self.write(&crate::output::with_suffix(prefix, &format!("-{name}.png")))?;
+        }
+        Ok(())
+    }
+
     /// Image size in SVG pixels, and the title's lines.
     fn layout(&self, entries: &[Entry]) -> ((f64, f64), Vec<String>) {
         let width = (PLOT_WIDTH + Self::legend_width(entries)).ceil();
