@@ -53,6 +53,14 @@ pub fn read_json<T: serde::de::DeserializeOwned>(path: &Path) -> Result<T, Strin
     serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))
 }
 
+/// `prefix` followed by `suffix`: `with_suffix("out/ff", "-oas.svg")` is `out/ff-oas.svg` (a
+/// prefix is a path and a file-name stem, not a folder).
+pub fn with_suffix(prefix: &Path, suffix: &str) -> std::path::PathBuf {
+    let mut s = prefix.as_os_str().to_owned();
+    s.push(suffix);
+    std::path::PathBuf::from(s)
+}
+
 #[cfg(test)]
 mod tests {
     /// Numbers printed by serde_json read back bit for bit, including issue 10's β of LOS000
@@ -72,12 +80,4 @@ mod tests {
             assert_eq!(a.to_bits(), b.to_bits(), "{a} read back as {b}");
         }
     }
-}
-
-/// `prefix` followed by `suffix`: `with_suffix("out/ff", "-oas.svg")` is `out/ff-oas.svg` (a
-/// prefix is a path and a file-name stem, not a folder).
-pub fn with_suffix(prefix: &Path, suffix: &str) -> std::path::PathBuf {
-    let mut s = prefix.as_os_str().to_owned();
-    s.push(suffix);
-    std::path::PathBuf::from(s)
 }
