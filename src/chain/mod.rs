@@ -72,6 +72,9 @@ impl Joint {
 pub struct Chain {
     bodies: Vec<Body>,
     joints: Vec<Joint>,
+    /// Each joint's corners `[R_k, L_k]` in the closed geometry ([`Joint::right_corner`],
+    /// [`Joint::left_corner`]), computed once for [`Chain::pose_into`].
+    corners: Vec<[[f64; 2]; 2]>,
 }
 
 /// A planar rigid map `x ↦ R(angle) x + shift` (the default is the identity).
@@ -188,7 +191,15 @@ impl Chain {
             }
             jt.normal = [jt.normal[0] / norm, jt.normal[1] / norm];
         }
-        Ok(Chain { bodies, joints })
+        let corners = joints
+            .iter()
+            .map(|j| [j.right_corner(), j.left_corner()])
+            .collect();
+        Ok(Chain {
+            bodies,
+            joints,
+            corners,
+        })
     }
 
     /// Number of bodies `N`.
@@ -253,9 +264,9 @@ impl Chain {
         let mut map = RigidMap::IDENTITY;
         // `sin_cos` of the map's angle, taken again only when the map turns.
         let mut sc = map.angle.sin_cos();
-        for (k, joint) in self.joints.iter().enumerate() {
-            let right = map.apply_with(sc, joint.right_corner());
-            let left = map.apply_with(sc, joint.left_corner());
+        for (k, &[r, l]) in self.corners.iter().enumerate() {
+            let right = map.apply_with(sc, r);
+            let left = map.apply_with(sc, l);
             let (theta, pivot) = if phi[k] != 0.0 {
                 (phi[k], right)
             } else {

@@ -12,6 +12,10 @@
 //! `embrace_angle` is in degrees (180: semicircular). The colonnade is Makris & Vassiliou's
 //! frame: `{"width", "height", "column_mass", "span", "beam_height", "beam_mass"}` (two equal
 //! monolithic columns, a beam `span + width` long flush with their outer faces).
+//!
+//! `"min_flight": k` (optional, default 0) sets the driver's [`LoopOptions::min_flight`]: a joint
+//! an impact opens whose predicted flight is shorter than `k` steps stays closed (the treatment
+//! of sub-step flights measured in docs/arch-performance.md; an option, off by default).
 
 use serde::Deserialize;
 
@@ -153,6 +157,16 @@ pub(super) fn build(
         return Err(err("output.every", "must be >= 1"));
     }
     let defaults = LoopOptions::default();
+    let min_flight = match spec.min_flight {
+        None => defaults.min_flight,
+        Some(k) if k.is_finite() && k >= 0.0 => k,
+        Some(k) => {
+            return Err(err(
+                "min_flight",
+                format!("{k}: must be a finite number of steps, zero or more"),
+            ))
+        }
+    };
     let options = LoopOptions {
         gravity: positive("gravity", spec.gravity.unwrap_or(defaults.gravity))?,
         dt: positive("dt", spec.dt)?,
@@ -166,6 +180,7 @@ pub(super) fn build(
         } else {
             0
         },
+        min_flight,
         ..defaults
     };
     Ok(LoopScene {

@@ -35,6 +35,9 @@ pub struct LoopSummary<'a> {
     pub max_step_drift: f64,
     /// The driver's time step (s).
     pub dt: f64,
+    /// The scene's `min_flight` (steps), when set above zero (absent: the default, 0).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub min_flight: Option<f64>,
     /// Wall-clock time of the run (s).
     pub wall_time_s: f64,
 }
@@ -65,6 +68,7 @@ impl<'a> LoopSummary<'a> {
             max_closure_residual: o.max_closure_residual,
             max_step_drift: o.max_step_drift,
             dt: scene.options.dt,
+            min_flight: (scene.options.min_flight > 0.0).then_some(scene.options.min_flight),
             wall_time_s,
         }
     }

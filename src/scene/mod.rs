@@ -146,6 +146,10 @@ pub struct SceneSpec {
     pub scheme: Option<String>,
     #[serde(default)]
     pub gravity: Option<f64>,
+    /// Closed chains only: a joint an impact opens whose predicted flight is shorter than this
+    /// many steps stays closed (`LoopOptions::min_flight`; default 0, docs/arch-performance.md).
+    #[serde(default)]
+    pub min_flight: Option<f64>,
     /// Schemes "moreau" and "auto": the error control of the time stepping (a step whose energy
     /// error exceeds this fraction of the run's energy scale is redone as two halves; default
     /// none, `crate::contact::refine`).
@@ -245,6 +249,12 @@ pub fn build(spec: SceneSpec, base: &Path, name: &str) -> Result<Scene, SceneErr
         return Err(err(
             field,
             "a closed chain, not a column: read it with scene::load_any",
+        ));
+    }
+    if spec.min_flight.is_some() {
+        return Err(err(
+            "min_flight",
+            "used by a closed chain (arch, colonnade) only",
         ));
     }
     if spec.blocks.is_empty() {
@@ -464,12 +474,42 @@ mod tests {
                 "missing field `duration`",
             ),
             ("{\"blocks\": [".to_string(), "EOF"),
+            (
+                GOOD.replace("\"dt\": 0.001", "\"dt\": 0.001, \"min_flight\": 1"),
+                "min_flight",
+            ),
         ];
         for (text, field) in cases {
             let e = parse(&text)
                 .err()
                 .unwrap_or_else(|| panic!("accepted: {text}"));
             assert!(e.0.contains(field), "{field}: {}", e.0);
+        }
+    }
+
+    /// A loop scene's `min_flight` reaches the driver's options (default 0, the driver's
+    /// default); a negative one is named (JSON has no NaN or infinity).
+    #[test]
+    fn a_loop_scene_takes_min_flight() {
+        let text = |extra: &str| {
+            format!(
+                r#"{{"arch": {{"radius": 5, "thickness": 0.75, "voussoirs": 8}},
+                    "excitation": {{"type": "none"}}, "duration": 1.0, "dt": 0.001{extra}}}"#
+            )
+        };
+        let options = |extra: &str| -> Result<f64, SceneError> {
+            let spec: SceneSpec =
+                serde_json::from_str(&text(extra)).map_err(|e| SceneError(e.to_string()))?;
+            match build_any(spec, Path::new("."), "test")? {
+                AnyScene::Loop(s) => Ok(s.options.min_flight),
+                AnyScene::Column(_) => panic!("a column"),
+            }
+        };
+        assert_eq!(options("").unwrap(), 0.0);
+        assert_eq!(options(", \"min_flight\": 1.5").unwrap(), 1.5);
+        for bad in ["-1", "-0.001"] {
+            let e = options(&format!(", \"min_flight\": {bad}")).unwrap_err();
+            assert!(e.0.contains("min_flight"), "{bad}: {}", e.0);
         }
     }
 }

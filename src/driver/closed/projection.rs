@@ -11,27 +11,26 @@
 use super::equations::solve_in_place;
 use crate::chain::{Chain, ChainPose};
 
-/// `M_FF` (row-major `|F| × |F|`) of the DOFs `open` in the pose: only the entries needed, the
-/// same formula as [`Chain::mass_matrix`]'s (the same numbers to the bit).
-fn sub_mass(chain: &Chain, pose: &ChainPose, open: &[usize]) -> Vec<f64> {
-    let nf = open.len();
-    let mut out = vec![0.0; nf * nf];
-    let piv: Vec<(usize, [f64; 2])> = open.iter().map(|&d| chain.dof_pivot(pose, d)).collect();
-    chain.mass_block_into(pose, &piv, &mut out, nf);
-    out
-}
-
-/// Solves `[M_FF A_Fᵀ; A_F 0][y; μ] = [b; c]` for `y` (in `b`'s place). `mass` is `M_FF`
-/// ([`sub_mass`]), `a` the `3 × m` constraint rows, `open` the DOFs `F`. `false` when singular.
-fn kkt(mass: &[f64], a: &[f64], m: usize, open: &[usize], b: &mut [f64], c: [f64; 3]) -> bool {
+/// Solves `[M_FF A_Fᵀ; A_F 0][y; μ] = [b; c]` for `y` (in `b`'s place), `M_FF` the mass
+/// entries of the DOFs `open` in the pose (built in place by [`Chain::mass_block_into`]: the
+/// same formula as [`Chain::mass_matrix`]'s, the same numbers to the bit), `a` the `3 × m`
+/// constraint rows. `false` when singular.
+fn kkt(
+    chain: &Chain,
+    pose: &ChainPose,
+    a: &[f64],
+    m: usize,
+    open: &[usize],
+    b: &mut [f64],
+    c: [f64; 3],
+) -> bool {
     let nf = open.len();
     let k = nf + 3;
     let mut mat = vec![0.0; k * k];
     let mut rhs = vec![0.0; k];
+    let piv: Vec<(usize, [f64; 2])> = open.iter().map(|&d| chain.dof_pivot(pose, d)).collect();
+    chain.mass_block_into(pose, &piv, &mut mat, k);
     for (i, &di) in open.iter().enumerate() {
-        for j in 0..nf {
-            mat[i * k + j] = mass[i * nf + j];
-        }
         for r in 0..3 {
             mat[i * k + nf + r] = a[r * m + di];
             mat[(nf + r) * k + i] = a[r * m + di];
@@ -52,23 +51,40 @@ fn kkt(mass: &[f64], a: &[f64], m: usize, open: &[usize], b: &mut [f64], c: [f64
 pub fn project_rates(chain: &Chain, pose: &ChainPose, open: &[usize], rates: &mut [f64]) -> bool {
     let m = chain.n_dofs();
     let g = chain.closure_matrix(pose);
-    // `M_F· v` over the moving DOFs only (the zero rates add nothing to the sums).
-    let moving: Vec<bool> = rates.iter().map(|&r| r != 0.0).collect();
+    // `M_F· v` over the moving DOFs only, each DOF's joint and pivot found once. The sum over
+    // all `m` DOFs in order (a `+0.0` for each still one) is the same sum: adding `+0.0` leaves
+    // every partial sum but a zero as it is, and once a non-zero term arrives the partial sums
+    // agree; only a sum that ends at zero may differ (in its sign), and that one is taken again
+    // over all `m` as before.
+    let moving: Vec<((usize, [f64; 2]), f64)> = (0..m)
+        .filter(|&e| rates[e] != 0.0)
+        .map(|e| (chain.dof_pivot(pose, e), rates[e]))
+        .collect();
+    let still = moving.len() < m;
     let mut b: Vec<f64> = open
         .iter()
         .map(|&d| {
-            (0..m)
-                .map(|e| {
-                    if moving[e] {
-                        chain.mass_entry(pose, d, e) * rates[e]
-                    } else {
-                        0.0
-                    }
-                })
-                .sum()
+            let pd = chain.dof_pivot(pose, d);
+            let sum: f64 = moving
+                .iter()
+                .map(|&(pe, r)| chain.mass_entry_of(pose, pd, pe) * r)
+                .sum();
+            if sum == 0.0 && still {
+                (0..m)
+                    .map(|e| {
+                        if rates[e] != 0.0 {
+                            chain.mass_entry(pose, d, e) * rates[e]
+                        } else {
+                            0.0
+                        }
+                    })
+                    .sum()
+            } else {
+                sum
+            }
         })
         .collect();
-    if !kkt(&sub_mass(chain, pose, open), &g, m, open, &mut b, [0.0; 3]) {
+    if !kkt(chain, pose, &g, m, open, &mut b, [0.0; 3]) {
         return false;
     }
     rates.iter_mut().for_each(|r| *r = 0.0);
@@ -128,16 +144,7 @@ pub(super) fn project_positions_posed(
         let mut free: Vec<usize> = open.to_vec();
         let trial = loop {
             let mut dx = vec![0.0; free.len()];
-            if free.len() < 3
-                || !kkt(
-                    &sub_mass(chain, pose, &free),
-                    &jac,
-                    m,
-                    &free,
-                    &mut dx,
-                    [-r[0], -r[1], -r[2]],
-                )
-            {
+            if free.len() < 3 || !kkt(chain, pose, &jac, m, &free, &mut dx, [-r[0], -r[1], -r[2]]) {
                 break None;
             }
             let mut trial = phi.to_vec();
@@ -214,6 +221,102 @@ mod tests {
         };
         for (a, b) in rates.iter().zip(&again) {
             assert!((a - b).abs() <= 1e-12 * a.abs().max(1.0));
+        }
+    }
+
+    /// The projection as it was before `M_F· v` skipped the still DOFs and `M_FF` was built in
+    /// the KKT matrix: every DOF in the sum, `M_FF` from `Chain::mass_entry`, copied.
+    fn project_rates_reference(
+        chain: &Chain,
+        pose: &ChainPose,
+        open: &[usize],
+        rates: &mut [f64],
+    ) -> bool {
+        let m = chain.n_dofs();
+        let g = chain.closure_matrix(pose);
+        let mut b: Vec<f64> = open
+            .iter()
+            .map(|&d| {
+                (0..m)
+                    .map(|e| {
+                        if rates[e] != 0.0 {
+                            chain.mass_entry(pose, d, e) * rates[e]
+                        } else {
+                            0.0
+                        }
+                    })
+                    .sum()
+            })
+            .collect();
+        let (nf, k) = (open.len(), open.len() + 3);
+        let mut mat = vec![0.0; k * k];
+        let mut rhs = vec![0.0; k];
+        for (i, &di) in open.iter().enumerate() {
+            for (j, &dj) in open.iter().enumerate() {
+                mat[i * k + j] = chain.mass_entry(pose, di, dj);
+            }
+            for r in 0..3 {
+                mat[i * k + nf + r] = g[r * m + di];
+                mat[(nf + r) * k + i] = g[r * m + di];
+            }
+            rhs[i] = b[i];
+        }
+        if !solve_in_place(&mut mat, &mut rhs) {
+            return false;
+        }
+        b.copy_from_slice(&rhs[..nf]);
+        rates.iter_mut().for_each(|r| *r = 0.0);
+        for (i, &d) in open.iter().enumerate() {
+            rates[d] = b[i];
+        }
+        true
+    }
+
+    /// `project_rates` gives the reference's rates to the bit: random poses of the mechanism with
+    /// more joints open, random rates with some DOFs still (zero) or of zero sum, and all rates
+    /// zero (every sum zero: the fallback over all DOFs keeps the reference's `+0.0`).
+    #[test]
+    fn project_rates_is_the_reference_bit_for_bit() {
+        let (chain, _) = mechanism();
+        let (m, n) = (chain.n_dofs(), chain.n_joints());
+        let mut u = crate::test_support::uniform(0x5eed_a7c4);
+        for case in 0..200 {
+            // Open joints: the four of the mechanism and a few more, on random faces.
+            let mut open: Vec<usize> = vec![3, 15, n + 9, n + 20];
+            for k in [1, 2, 6, 12, 16, 18] {
+                if u() < 0.5 {
+                    open.push(if u() < 0.5 { k } else { n + k });
+                }
+            }
+            open.sort_unstable();
+            let mut phi = vec![0.0; m];
+            for &d in &open {
+                let x = 0.02 * u();
+                phi[d] = if d < n { -x } else { x };
+            }
+            let pose = chain.pose(&phi);
+            let mut rates = vec![0.0; m];
+            for (i, &d) in open.iter().enumerate() {
+                rates[d] = match case % 4 {
+                    0 => 0.0,
+                    1 if i % 2 == 0 => 0.0,
+                    _ => 0.2 * u() - 0.1,
+                };
+            }
+            // A rate on a DOF outside the projection's set (a locked joint's).
+            if case % 3 == 0 {
+                rates[7] = -0.05 * u();
+            }
+            let sub: Vec<usize> = open.iter().copied().skip(case % 2).collect();
+            let (mut a, mut b) = (rates.clone(), rates.clone());
+            let (ok_a, ok_b) = (
+                project_rates(&chain, &pose, &sub, &mut a),
+                project_rates_reference(&chain, &pose, &sub, &mut b),
+            );
+            assert_eq!(ok_a, ok_b, "case {case}");
+            for (x, y) in a.iter().zip(&b) {
+                assert_eq!(x.to_bits(), y.to_bits(), "case {case}: {a:?} against {b:?}");
+            }
         }
     }
 }
