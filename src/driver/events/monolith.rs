@@ -21,9 +21,10 @@
 //!   `W_a = S_0 (g − P_a)` of the straight column (read off its load entries). Over
 //!   `|θ| ≤ θ_m` (widened by two steps at the largest rate, for the probes inside and past a
 //!   step) and `|a_g| ≤ A` — after `quiet_after` the column's static uplift acceleration —
-//!   `U × R(θ)… ≤ −g (U_x cos θ_m − |U_y| sin θ_m) + A (|U_x| sin θ_m + |U_y|)`; the stop asks
-//!   this `≤ −10⁻⁶ g |U|` for every such DOF, so no reaction test fails and the opening model is
-//!   never called.
+//!   `U_d × R(−θ) f = −g (R(θ) U_d)_x + a_g (R(θ) U_d)_y
+//!   ≤ −g (U_x cos θ_m − |U_y| sin θ_m) + A (U_x sin θ_m + |U_y|)` (if `U_x > 0`); the stop asks
+//!   this `≤ −10⁻⁶ g |U_d|` for every such DOF, so no reaction test fails and the opening model
+//!   is never called (test `the_reaction_bound_holds_the_drivers_margins`).
 //! - **Impacts keep it one body.** A monolith impact happens in the straight pose (the DOF is
 //!   set to zero) with only the base rate non-zero; the impact model is a projection, positively
 //!   homogeneous in that rate, so its outcome is the same for every rate of a sign. It is checked
