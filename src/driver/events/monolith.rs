@@ -9,7 +9,8 @@
 //!   pivot `P` (its `M_FF = I_P` is constant, no velocity term), so `E = T + V` changes only by
 //!   the ground's power `−M a_g ẋ_G`, `|ẋ_G| ≤ ρ |θ̇|` (`ρ = |G − P|`), `½ I_P θ̇² ≤ E` while
 //!   `V ≥ 0`: `√E(s) ≤ √E(t) + M ρ / √(2 I_P) · ∫_t^∞ |a_g| =: x` (the single-block bound).
-//!   Impacts (kinetic-metric projections) and settling only lower it.
+//!   Impacts (kinetic-metric projections) and settling only lower it. An impact turns the
+//!   column about the other corner: the growth, `E_tip` and `θ_m` below are those of both.
 //! - **Tipping.** Only the monolith can tip (every other part is closed); it needs
 //!   `E_tip = M g (ρ − y_G)`. The stop asks `x ≤ 0.9 √E_tip`, the 0.9 for the integration
 //!   error as in the other stops; then `V ≤ E_b = (x / 0.9)² ≤ E_tip` bounds the rotation by
@@ -123,29 +124,34 @@ impl Monolith {
         let Some(impulse) = problem.motion.remaining_impulse(state.t()) else {
             return false;
         };
-        let side = &self.sides[usize::from(p != 0)];
         let g = self.g;
-        let [wx, wy] = side.w;
-        let rho_m = wx.hypot(wy);
-        let e_tip = g * (rho_m - wy);
-        let growth = rho_m / (2.0 * side.ip).sqrt();
+        // An impact turns the column about the other corner: the bound of both.
+        let (mut growth, mut e_tip) = (0.0_f64, f64::INFINITY);
+        for side in &self.sides {
+            let rho_m = side.w[0].hypot(side.w[1]);
+            growth = growth.max(rho_m / (2.0 * side.ip).sqrt());
+            e_tip = e_tip.min(g * (rho_m - side.w[1]));
+        }
         let (kin, pot) = problem.chain.energy(&state.open, &state.phi, &state.rates);
         let x = (kin + pot).max(0.0).sqrt() + growth * impulse;
         if !(e_tip > 0.0 && x <= SAFETY_FACTOR * e_tip.sqrt()) {
             return false;
         }
-        // The largest rotation: `V(θ) = g (ρ_M cos(β − θ) − W_y)`, `ρ_M = M ρ`.
-        let e_bound = (x / SAFETY_FACTOR).powi(2);
-        let beta = wx.abs().atan2(wy);
-        let c = ((wy + e_bound / g) / rho_m).min(1.0);
-        let omega = (2.0 * e_bound / side.ip).sqrt();
-        let theta = ((beta - c.acos()).max(0.0) * (1.0 + 1e-6)
-            + 2.0 * problem.opts.stepping.dt * omega
-            + 1e-12)
-            .min(0.5 * std::f64::consts::PI);
-        let reactions_hold = self
-            .reaction_bounds(p, theta, self.accel)
-            .all(|(_, bound, u)| bound <= -MARGIN * g * u);
+        let (e_bound, dt) = ((x / SAFETY_FACTOR).powi(2), problem.opts.stepping.dt);
+        let reactions_hold = [0, n].iter().all(|&q| {
+            // The largest rotation about this corner: `V(θ) = g (ρ_M cos(β − θ) − W_y)`,
+            // `ρ_M = M ρ`.
+            let side = &self.sides[usize::from(q != 0)];
+            let [wx, wy] = side.w;
+            let rho_m = wx.hypot(wy);
+            let beta = wx.abs().atan2(wy);
+            let c = ((wy + e_bound / g) / rho_m).min(1.0);
+            let omega = (2.0 * e_bound / side.ip).sqrt();
+            let theta = ((beta - c.acos()).max(0.0) * (1.0 + 1e-6) + 2.0 * dt * omega + 1e-12)
+                .min(0.5 * std::f64::consts::PI);
+            self.reaction_bounds(q, theta, self.accel)
+                .all(|(_, bound, u)| bound <= -MARGIN * g * u)
+        });
         reactions_hold && self.impacts_keep_it(&problem.opts.physics.model)
     }
 
