@@ -78,6 +78,11 @@ pub(crate) trait ChainDynamics: Equations {
     fn barrier_certified(&self) -> bool {
         false
     }
+    /// The monolith stop of a column under thesis Eq. 6 (`events/monolith.rs`), where it
+    /// applies (a column of two or more blocks without the exact velocity terms).
+    fn monolith(&self) -> Option<super::events::monolith::Monolith> {
+        None
+    }
 
     /// Assembles the models' input (mass matrix, loads) at a state; the next four calls use it.
     fn assemble(&mut self, statuses: &[Status], ag: f64, phi: &[f64], rates: &[f64]);

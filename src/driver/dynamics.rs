@@ -551,6 +551,11 @@ impl ChainDynamics for ColumnDynamics<'_> {
         super::barrier::column_is_certified(self.col)
     }
 
+    fn monolith(&self) -> Option<super::events::monolith::Monolith> {
+        (self.n >= 2 && !self.exact)
+            .then(|| super::events::monolith::Monolith::of_column(self.col, self.g))
+    }
+
     fn assemble(&mut self, statuses: &[Status], ag: f64, phi: &[f64], rates: &[f64]) {
         let mut mass = std::mem::take(&mut self.system_mass);
         let mut load = std::mem::take(&mut self.system_load);

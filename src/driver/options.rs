@@ -170,7 +170,10 @@ pub struct StoppingOptions {
     /// `stop_when_safe_column`, with [`PhysicsOptions::exact_velocity_terms`] only (thesis Eq. 6
     /// does not conserve energy there) and only where its barrier is certified
     /// ([`crate::driver::column_is_certified`]: 2 or 3 equal blocks, H/B 3–12); otherwise
-    /// ignored. Checked every 16 steps. It proves only that the block will not
+    /// ignored. Columns under thesis Eq. 6, with `quiet_after`: the monolith stop
+    /// (`driver/events/monolith.rs`) — after `quiet_after`, a column rocking as one body about
+    /// a base corner whose energy bound, reaction margins and impact model prove that it goes on
+    /// so without tipping. Checked every 16 steps. It proves only that the block will not
     /// tip: a sliding or tension stop that the rest of the run would have met is not reported
     /// (sweeps use infinite friction).
     pub stop_when_safe: bool,

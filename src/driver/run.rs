@@ -1,6 +1,7 @@
 //! The event-driven run loop (thesis 3.3, SPEC §5).
 
 use super::chain::{not_positive_definite, ChainDynamics};
+use super::events::monolith::Monolith;
 use super::events::rest::CannotTip;
 use super::events::settle::Settling;
 use super::events::{detect, forces, impact, opening, overturn, refine, rest, Found, Probe};
@@ -87,6 +88,7 @@ struct Run {
     recorder: Recorder,
     settling: Settling,
     cannot_tip: Option<CannotTip>,
+    monolith: Option<Monolith>,
 }
 
 impl Run {
@@ -101,6 +103,7 @@ impl Run {
             recorder: Recorder::new(n, opts.recording, opts.stopping.duration, opts.stepping.dt),
             settling: Settling::new(opts, n, e_tip),
             cannot_tip: CannotTip::new(problem, n, e_tip),
+            monolith: rest::monolith(problem),
         }
     }
 
@@ -131,7 +134,8 @@ impl Run {
             Some(StopReason::TooManyEvents)
         } else {
             let (cannot_tip, steps) = (self.cannot_tip.as_ref(), self.recorder.steps());
-            rest::stop(problem, &self.state, cannot_tip, steps)
+            let monolith = self.monolith.as_mut();
+            rest::stop(problem, &self.state, cannot_tip, monolith, steps)
         }
     }
 

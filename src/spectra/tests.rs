@@ -378,6 +378,8 @@ fn column_energy_bound_needs_the_exact_equations() {
         n_blocks: 2,
         ..small_grid()
     };
+    // Only the forced column bound: `stop_when_safe` would add the monolith stop of Eq. 6.
+    o.sweep.simulation.stopping.stop_when_safe = false;
     o.sweep.simulation.stopping.stop_when_safe_column = true;
     let stops = |o: &OasOptions| {
         [1000.0, 100.0, 10.0]
@@ -391,6 +393,49 @@ fn column_energy_bound_needs_the_exact_equations() {
     assert_eq!(stops(&o), 0);
     o.sweep.simulation.physics.exact_velocity_terms = true;
     assert!(stops(&o) > 0);
+}
+
+/// The monolith stop of thesis Eq. 6 (`driver/events/monolith.rs`, part of the sweeps'
+/// `stop_when_safe` for columns without the exact velocity terms) gives, at every point of a
+/// grid, the verdict of the whole run, for 2- and 3-block columns and 1, 2 and 10 impacts on the
+/// bundled record; and it does stop runs.
+#[test]
+fn monolith_stop_changes_no_verdict() {
+    let record = bundled_record();
+    for (n_blocks, n_impacts) in [(2, 2), (3, 1), (3, 2), (3, 10)] {
+        let mut grid = OasOptions {
+            levels: linear_levels(1.0, 10.0, 6),
+            sizes: log_sizes(1000.0, 0.1, 16),
+            n_blocks,
+            ..OasOptions::default()
+        };
+        grid.sweep.simulation.physics.model.n_impacts = n_impacts;
+        assert!(!grid.sweep.simulation.physics.exact_velocity_terms);
+        assert!(grid.sweep.simulation.stopping.stop_when_safe);
+        let mut full = grid.clone();
+        full.sweep.simulation.stopping.stop_when_safe = false;
+        let (mut unsafe_points, mut stopped) = (0, 0);
+        for &level in &grid.levels {
+            for &size in &grid.sizes {
+                let stopping = point_run(&record, level, size, &grid).unwrap();
+                let whole = point_run(&record, level, size, &full).unwrap();
+                let verdict = |r: Option<PointRun>| r.is_some_and(|r| r.overturned);
+                assert_eq!(
+                    verdict(stopping),
+                    verdict(whole),
+                    "{n_blocks} blocks, {n_impacts} impacts: level {level}, R = {size}"
+                );
+                unsafe_points += usize::from(verdict(whole));
+                stopped += usize::from(
+                    stopping.is_some_and(|r| r.stop == crate::driver::StopReason::CannotTip),
+                );
+                assert!(whole.is_none_or(|r| r.stop != crate::driver::StopReason::CannotTip));
+            }
+        }
+        let cells = grid.levels.len() * grid.sizes.len();
+        assert!(unsafe_points > 0 && unsafe_points < cells);
+        assert!(stopped > 0, "{n_blocks} blocks: the stop never ended a run");
+    }
 }
 
 #[test]

@@ -8,6 +8,7 @@ pub(crate) mod detect;
 pub(crate) mod forces;
 pub(crate) mod impact;
 pub(crate) mod locate;
+pub(crate) mod monolith;
 pub(crate) mod opening;
 pub(crate) mod overturn;
 pub(crate) mod refine;

@@ -3,8 +3,10 @@
 //! `stopping.quiet_after`), and the energy bound of `stopping.stop_when_safe` that proves a
 //! single block cannot tip in the rest of the motion ([`StopReason::CannotTip`]), and its
 //! extension to columns (`stopping.stop_when_safe_column`, or `stop_when_safe` on the columns
-//! whose barrier is certified, [`crate::driver::column_is_certified`]).
+//! whose barrier is certified, [`crate::driver::column_is_certified`]); under thesis Eq. 6, the
+//! monolith stop of [`super::monolith`] after `quiet_after`.
 
+use super::monolith::Monolith;
 use crate::driver::chain::ChainDynamics;
 use crate::driver::problem::Problem;
 use crate::driver::state::State;
@@ -64,23 +66,41 @@ impl CannotTip {
     }
 }
 
+/// The monolith stop of [`super::monolith`] when it applies: `stop_when_safe`, static tipping,
+/// `quiet_after` given, and a chain that has it (a column of two or more blocks under Eq. 6).
+pub(crate) fn monolith<C: ChainDynamics>(problem: &Problem<C>) -> Option<Monolith> {
+    let stopping = &problem.opts.stopping;
+    if !stopping.stop_when_safe || stopping.continue_until_fallen || stopping.quiet_after.is_none()
+    {
+        return None;
+    }
+    problem.chain.monolith()
+}
+
 /// The stop before a step from `state` (after `steps` accepted steps), if the column is at rest
 /// for good or cannot tip.
 pub(crate) fn stop<C: ChainDynamics>(
     problem: &mut Problem<C>,
     state: &State,
     cannot_tip: Option<&CannotTip>,
+    monolith: Option<&mut Monolith>,
     steps: usize,
 ) -> Option<StopReason> {
-    if state.is_closed()
-        && problem
-            .opts
-            .stopping
-            .quiet_after
-            .is_some_and(|q| state.t() >= q)
-    {
+    let quiet = problem
+        .opts
+        .stopping
+        .quiet_after
+        .is_some_and(|q| state.t() >= q);
+    if state.is_closed() && quiet {
         return Some(StopReason::AtRest);
     }
-    let bound = cannot_tip?;
-    (steps % SAFETY_EVERY == 0 && bound.proves(problem, state)).then_some(StopReason::CannotTip)
+    if steps % SAFETY_EVERY != 0 {
+        return None;
+    }
+    if quiet && monolith.is_some_and(|m| m.proves(problem, state)) {
+        return Some(StopReason::CannotTip);
+    }
+    cannot_tip?
+        .proves(problem, state)
+        .then_some(StopReason::CannotTip)
 }
