@@ -30,6 +30,11 @@
 //!   the residual is −5.6e-2, −2.8e-2, −1.1e-2, −9.2e-4, −4.2e-4 and −2.6e-4 with a cap of 8, 16,
 //!   32, 64, 128 and none, at 4.2, 6.6, 8.3, 8.8, 10.1 and 11.1 s (docs/energy-control.md).
 //!
+//! - **Cascades.** An impact's impulse sets an end a few nanometres from its face approaching,
+//!   and that landing, microseconds later, was located by itself (most of the cost of a
+//!   chattering column): here the ends within [`IMPACT_GAP`]` · g h²` of their face take part in
+//!   the located impact (docs/energy-control.md, "Cost").
+//!
 //! And one misnomer: a joint slipping at the start of a sub-step and sticking at its end does the
 //! work of its Coulomb impulse along the step's mean slip rate (the slip stopping: friction),
 //! which the accounts booked as the scheme's error; here it is friction. And a column that closes

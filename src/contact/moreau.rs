@@ -79,8 +79,10 @@ pub struct SchemeOptions {
     /// ([`super::consistent`]): the persistent contacts keep their law through an impact (and
     /// every end on its face and not approaching has it), the trial sub-step of a landing is read
     /// before its projection, the other ends landing in it
-    /// are located too, up to [`super::consistent::MAX_SPLITS`] impacts a step, and a slip that
-    /// stops within a step is booked as friction. `false` (the default): the scheme as before.
+    /// are located too, up to [`super::consistent::MAX_SPLITS`] impacts a step, the ends within
+    /// [`super::consistent::IMPACT_GAP`]` · g h²` of their face take part in a located impact,
+    /// and a slip that stops within a step is booked as friction. `false` (the default): the
+    /// scheme as before.
     pub energy_consistent: bool,
 }
 
