@@ -30,8 +30,8 @@
 //!   the residual is −5.6e-2, −2.8e-2, −1.1e-2, −9.2e-4, −4.2e-4 and −2.6e-4 with a cap of 8, 16,
 //!   32, 64, 128 and none, at 4.2, 6.6, 8.3, 8.8, 10.1 and 11.1 s (docs/energy-control.md).
 //!
-//! - **Cascades.** An impact's impulse sets an end a few nanometres from its face approaching,
-//!   and that landing, microseconds later, was located by itself (most of the cost of a
+//! - **Cascades.** An impact's impulse sets an end nanometres from its face approaching, and
+//!   that landing, 1–100 µs later, was located by itself (most of the cost of a
 //!   chattering column): here the ends within [`IMPACT_GAP`]` · g h²` of their face take part in
 //!   the located impact (docs/energy-control.md, "Cost").
 //!
@@ -53,8 +53,8 @@ pub const MAX_SPLITS: usize = 256;
 /// 10 nm; a tenth of what an end at the split speed covers in a step) take part in a located
 /// impact as the ends touching it do: the impact's index set with a gap tolerance, as the
 /// event-driven schemes take the constraints below a tolerance as active (Acary & Brogliato
-/// 2008). Left out, an end that close is set approaching by the impact's impulse and lands a
-/// few microseconds later, located by itself: the cascade of a chattering column (measured in
+/// 2008). Left out, an end that close is set approaching by the impact's impulse and lands
+/// 1–100 µs later, located by itself: the cascade of a chattering column (measured in
 /// docs/energy-control.md). Taking part, it is a contact like the touching ends: it holds an
 /// impulse or not, and if it does the projection (Acary 2013) puts it back onto its face. The
 /// tolerance is `O(h²)`, as the scheme's own position error.
