@@ -265,6 +265,14 @@ impl Stepper {
             }
         }
         let eps = self.contact_gap;
+        // The contact tolerance, or with `energy_consistent` the impact's own (see
+        // `consistent::IMPACT_GAP`); the model comparisons that call this outside a step have
+        // the contact tolerance.
+        let impact_gap = if self.options.energy_consistent {
+            self.impact_gap.max(eps)
+        } else {
+            eps
+        };
         for stage in 1..=stages {
             for k in 0..n {
                 let geo = self.geometry[k];
@@ -275,7 +283,7 @@ impl Stepper {
                     mu: self.mu[k],
                 };
                 for c in 0..2 {
-                    jc.active[c] = landing[k][c] || geo.ends[c].gap <= eps;
+                    jc.active[c] = landing[k][c] || geo.ends[c].gap <= impact_gap;
                 }
                 for c in 0..2 {
                     let p = 1 - c;

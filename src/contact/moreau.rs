@@ -79,8 +79,10 @@ pub struct SchemeOptions {
     /// ([`super::consistent`]): the persistent contacts keep their law through an impact (and
     /// every end on its face and not approaching has it), the trial sub-step of a landing is read
     /// before its projection, the other ends landing in it
-    /// are located too, up to [`super::consistent::MAX_SPLITS`] impacts a step, and a slip that
-    /// stops within a step is booked as friction. `false` (the default): the scheme as before.
+    /// are located too, up to [`super::consistent::MAX_SPLITS`] impacts a step, the ends within
+    /// [`super::consistent::IMPACT_GAP`]` · g h²` of their face take part in a located impact,
+    /// and a slip that stops within a step is booked as friction. `false` (the default): the
+    /// scheme as before.
     pub energy_consistent: bool,
 }
 
@@ -205,6 +207,9 @@ pub struct Stepper {
     /// step.
     pub(super) v_split: f64,
     pub(super) v_touch: f64,
+    /// Gap (m) within which an end takes part in a located impact: the contact tolerance, and
+    /// with `energy_consistent` [`super::consistent::IMPACT_GAP`]` · g h²` if larger.
+    pub(super) impact_gap: f64,
 }
 
 #[derive(Clone, Debug)]
@@ -276,6 +281,7 @@ impl Stepper {
             missed_found: None,
             v_split: 0.0,
             v_touch: 0.0,
+            impact_gap: 0.0,
             q,
             drums,
         };
@@ -351,8 +357,13 @@ impl Stepper {
         self.v_touch = SPLIT_TOUCHING * self.options.gravity * h;
         let mut splits = 0;
         let max_splits = if self.options.energy_consistent {
+            let g = self.options.gravity;
+            self.impact_gap = self
+                .contact_gap
+                .max(super::consistent::IMPACT_GAP * g * h * h);
             super::consistent::MAX_SPLITS
         } else {
+            self.impact_gap = self.contact_gap;
             MAX_SPLITS
         };
         loop {
