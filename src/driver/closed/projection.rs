@@ -45,6 +45,20 @@ fn kkt(
     true
 }
 
+/// Row `d` of the full mass matrix times `rates`, summed over every DOF in order (a `+0.0` for
+/// each still one).
+fn mass_row_times_rates(chain: &Chain, pose: &ChainPose, d: usize, rates: &[f64]) -> f64 {
+    (0..chain.n_dofs())
+        .map(|e| {
+            if rates[e] != 0.0 {
+                chain.mass_entry(pose, d, e) * rates[e]
+            } else {
+                0.0
+            }
+        })
+        .sum()
+}
+
 /// The rates closest to `rates` in kinetic energy that move only the DOFs `open` and keep the
 /// loop closed (`G v = 0`): the rates of every other DOF are removed (a locked joint, SPEC §5's
 /// settling with the closure). Returns `false` (rates untouched) when the KKT system is singular.
@@ -70,15 +84,7 @@ pub fn project_rates(chain: &Chain, pose: &ChainPose, open: &[usize], rates: &mu
                 .map(|&(pe, r)| chain.mass_entry_of(pose, pd, pe) * r)
                 .sum();
             if sum == 0.0 && still {
-                (0..m)
-                    .map(|e| {
-                        if rates[e] != 0.0 {
-                            chain.mass_entry(pose, d, e) * rates[e]
-                        } else {
-                            0.0
-                        }
-                    })
-                    .sum()
+                mass_row_times_rates(chain, pose, d, rates)
             } else {
                 sum
             }
@@ -236,17 +242,7 @@ mod tests {
         let g = chain.closure_matrix(pose);
         let mut b: Vec<f64> = open
             .iter()
-            .map(|&d| {
-                (0..m)
-                    .map(|e| {
-                        if rates[e] != 0.0 {
-                            chain.mass_entry(pose, d, e) * rates[e]
-                        } else {
-                            0.0
-                        }
-                    })
-                    .sum()
-            })
+            .map(|&d| mass_row_times_rates(chain, pose, d, rates))
             .collect();
         let (nf, k) = (open.len(), open.len() + 3);
         let mut mat = vec![0.0; k * k];
