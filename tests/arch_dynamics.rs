@@ -23,9 +23,9 @@
 
 use rocking::chain::arch::{annular_sector, VoussoirArch};
 use rocking::chain::Chain;
-use rocking::driver::closed::{LoopEquations, LoopEventKind};
-use rocking::driver::{simulate_loop, LoopOptions, LoopState};
-use rocking::ground::FnMotion;
+use rocking::driver::closed::{LoopEquations, LoopError, LoopEventKind};
+use rocking::driver::{simulate_loop, LoopOptions, LoopOutcome, LoopState};
+use rocking::ground::{FnMotion, GroundMotion};
 use rocking::model::column::GRAVITY;
 use rocking::{opening_model_constrained, ModelOptions, Status};
 use std::f64::consts::PI;
@@ -159,6 +159,20 @@ fn driver_options(duration: f64) -> LoopOptions {
         dt: 1e-3,
         ..LoopOptions::default()
     }
+}
+
+/// The loop driver from rest under `motion` for `duration` seconds ([`driver_options`]).
+fn from_rest(
+    chain: &Chain,
+    motion: &dyn GroundMotion,
+    duration: f64,
+) -> Result<LoopOutcome, LoopError> {
+    simulate_loop(
+        chain,
+        motion,
+        LoopState::at_rest(chain),
+        &driver_options(duration),
+    )
 }
 
 /// The ground motion: a half-sine of amplitude `amp` (m/s², +x) and duration `tp`, then nothing.

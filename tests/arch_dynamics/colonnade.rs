@@ -15,13 +15,7 @@ fn colonnade_impacts_keep_makris_vassiliou_restitution() {
     let frame = CappedColonnade::frame(1.0, 5.0, 12500.0, 4.0, 0.5, 12500.0);
     let chain = frame.chain().unwrap();
     let motion = FnMotion(|t| ground(t, -3.0, 0.5), 0.5);
-    let out = simulate_loop(
-        &chain,
-        &motion,
-        LoopState::at_rest(&chain),
-        &driver_options(4.0),
-    )
-    .unwrap();
+    let out = from_rest(&chain, &motion, 4.0).unwrap();
     let alpha = (0.2f64).atan();
     let gamma = 0.5;
     let r = ((1.0 - 1.5 * alpha.sin().powi(2) + 3.0 * gamma * (2.0 * alpha).cos())
@@ -71,13 +65,7 @@ fn colonnade_overturning_against_single_column() {
             let amp = -level * a_min;
             let motion = FnMotion(move |t| ground(t, amp, tp), tp);
             if first[0].is_none() {
-                let out = simulate_loop(
-                    chain,
-                    &motion,
-                    LoopState::at_rest(chain),
-                    &driver_options(duration),
-                )
-                .unwrap();
+                let out = from_rest(chain, &motion, duration).unwrap();
                 if out.collapsed {
                     first[0] = Some(level);
                 }
@@ -145,13 +133,7 @@ fn colonnade_overturning_curve() {
                 },
                 length,
             );
-            let out = simulate_loop(
-                chain,
-                &motion,
-                LoopState::at_rest(chain),
-                &driver_options(duration),
-            )
-            .unwrap();
+            let out = from_rest(chain, &motion, duration).unwrap();
             let closings = out
                 .events
                 .iter()

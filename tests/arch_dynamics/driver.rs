@@ -72,12 +72,7 @@ fn pulse_run(
     let lp = Loop::new();
     let amp = -factor * 0.148875 * GRAVITY;
     let motion = FnMotion(move |t| ground(t, amp, tp), tp);
-    simulate_loop(
-        &lp.chain,
-        &motion,
-        LoopState::at_rest(&lp.chain),
-        &driver_options(duration),
-    )
+    from_rest(&lp.chain, &motion, duration)
 }
 
 /// From rest: a pulse of half λ never opens the arch (no event, not collapsed); one of 1.2 λ
@@ -172,13 +167,7 @@ fn driver_record_rattle_stays_closed_and_few_events() {
     )
     .unwrap();
     let motion = FnMotion(|t| record.acceleration(t), record.duration());
-    let out = simulate_loop(
-        &lp.chain,
-        &motion,
-        LoopState::at_rest(&lp.chain),
-        &driver_options(5.0),
-    )
-    .unwrap();
+    let out = from_rest(&lp.chain, &motion, 5.0).unwrap();
     assert!(
         !out.collapsed && out.peak_angle > 1e-4,
         "{}",
