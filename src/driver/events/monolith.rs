@@ -204,11 +204,60 @@ mod tests {
     use crate::driver::dynamics::ColumnDynamics;
     use crate::spectra::column_of_size;
 
-    /// The closed form of the stop against the driver's own reaction margins (Eq. 6, tolerance 0
-    /// so that the margin is the raw reaction test): at the straight pose the bound is the
-    /// largest margin over `a_g = ±A`, to rounding; at 4 000 random poses, rates and ground
-    /// accelerations every margin lies below the bound of its `|θ|` and `|a_g|` — whatever the
-    /// rate (Eq. 6 has no velocity term). 2 and 3 blocks, H/B 4 and 12, both base corners.
+    /// The driver's reaction margins of `col` rocking about base DOF `p` at `theta`, `a_g` and
+    /// base rate `rate` (Eq. 6, tolerance 0, so that a margin is the raw reaction test).
+    fn margins(
+        chain: &mut ColumnDynamics,
+        n: usize,
+        p: usize,
+        theta: f64,
+        ag: f64,
+        rate: f64,
+    ) -> Vec<f64> {
+        let corner = Status::of_dof(p, n);
+        let mut statuses = vec![Status::Closed; n];
+        statuses[0] = corner;
+        let (mut phi, mut rates) = (vec![0.0; 2 * n], vec![0.0; 2 * n]);
+        phi[p] = corner.sign() * theta;
+        rates[p] = rate;
+        chain.check(&[p], &statuses, ag, &phi, &rates, false);
+        chain.margins().to_vec()
+    }
+
+    /// At `count` random poses `|θ| ≤ theta_max`, rates and ground accelerations `|a_g| ≤ A`
+    /// (the column's static uplift acceleration), every margin of a DOF above the base lies
+    /// below the bound of its `|θ|` and `|a_g|`.
+    fn bound_holds_at_random_states(
+        col: &Column,
+        p: usize,
+        theta_max: f64,
+        count: usize,
+        next: &mut impl FnMut() -> f64,
+    ) {
+        let g = 9.81;
+        let mut chain = ColumnDynamics::new(col, g, false, 0.0, f64::INFINITY);
+        let mono = Monolith::of_column(col, g);
+        let big_a = col.static_uplift_acceleration(g);
+        for _ in 0..count {
+            let theta = theta_max * next().powi(2);
+            let ag = big_a * (2.0 * next() - 1.0);
+            let rate = 10.0 * (2.0 * next() - 1.0);
+            let m = margins(&mut chain, col.n_interfaces(), p, theta, ag, rate);
+            for (d, bound, u) in mono.reaction_bounds(p, theta, ag.abs()) {
+                assert!(
+                    m[d] <= bound + 1e-12 * g * u,
+                    "DOF {d}: θ {theta}, a_g {ag}: {} > {bound}",
+                    m[d]
+                );
+            }
+        }
+    }
+
+    /// The closed form of the stop against the driver's own reaction margins: at the straight
+    /// pose the bound is the largest margin over `a_g = ±A`, to rounding; at 4 000 random poses,
+    /// rates and ground accelerations every margin lies below the bound of its `|θ|` and `|a_g|`
+    /// — whatever the rate (Eq. 6 has no velocity term). 2 and 3 blocks, H/B 4 and 12, both base
+    /// corners.
     #[test]
     fn the_reaction_bound_holds_the_drivers_margins() {
         let g = 9.81;
@@ -220,17 +269,8 @@ mod tests {
                 let mono = Monolith::of_column(&col, g);
                 let big_a = col.static_uplift_acceleration(g);
                 for p in [0, n] {
-                    let corner = Status::of_dof(p, n);
-                    let mut statuses = vec![Status::Closed; n];
-                    statuses[0] = corner;
-                    let mut margins = |theta: f64, ag: f64, rate: f64| {
-                        let (mut phi, mut rates) = (vec![0.0; 2 * n], vec![0.0; 2 * n]);
-                        phi[p] = corner.sign() * theta;
-                        rates[p] = rate;
-                        chain.check(&[p], &statuses, ag, &phi, &rates, false);
-                        chain.margins().to_vec()
-                    };
-                    let (plus, minus) = (margins(0.0, big_a, 0.0), margins(0.0, -big_a, 1.0));
+                    let plus = margins(&mut chain, n, p, 0.0, big_a, 0.0);
+                    let minus = margins(&mut chain, n, p, 0.0, -big_a, 1.0);
                     let mut count = 0;
                     for (d, bound, u) in mono.reaction_bounds(p, 0.0, big_a) {
                         let largest = plus[d].max(minus[d]);
@@ -242,21 +282,80 @@ mod tests {
                         count += 1;
                     }
                     assert_eq!(count, 2 * (n - 1));
-                    for _ in 0..1000 {
-                        let theta = 0.05 * next().powi(2);
-                        let ag = big_a * (2.0 * next() - 1.0);
-                        let rate = 10.0 * (2.0 * next() - 1.0);
-                        let m = margins(theta, ag, rate);
-                        for (d, bound, u) in mono.reaction_bounds(p, theta, ag.abs()) {
-                            assert!(
-                                m[d] <= bound + 1e-12 * g * u,
-                                "{n} blocks, DOF {d}: θ {theta}, a_g {ag}: {} > {bound}",
-                                m[d]
-                            );
-                        }
-                    }
+                    bound_holds_at_random_states(&col, p, 0.05, 1000, &mut next);
                 }
             }
         }
+    }
+
+    /// On columns of equal blocks (the sweeps' columns) only the energy condition ever decides.
+    /// On unequal ones the other two do:
+    /// - a 1 × 2 m block under a 0.8 × 2 m one: the bound still holds the driver's margins; with
+    ///   the column rocking as one body below its tipping angle and `|a_g|` within the column's
+    ///   static uplift acceleration `A` (the stop's range after `quiet_after`), the driver's
+    ///   margin of the upper interface turns positive (it would open), and the bound over that
+    ///   range is positive: the stop declines this column, whatever its energy;
+    /// - a 0.5 × 2 m block on the same base: rocking about a base corner already loads the upper
+    ///   interface open (`U_x ≤ 0` for one of its DOFs: no bound), and an impact of the monolith opens it, so the stop
+    ///   never fires.
+    #[test]
+    fn the_reaction_and_impact_conditions_decide_on_unequal_columns() {
+        use crate::model::column::Block;
+        let g = 9.81;
+        let mut next = crate::test_support::uniform(0x0b10_c5ed);
+        let base = Block::rectangle(1.0, 2.0, 5000.0);
+        let col = Column::new(vec![base, Block::rectangle(0.8, 2.0, 4000.0)]).unwrap();
+        let (n, top) = (2, [1, 3]);
+        let mut chain = ColumnDynamics::new(&col, g, false, 0.0, f64::INFINITY);
+        let mut mono = Monolith::of_column(&col, g);
+        let big_a = col.static_uplift_acceleration(g);
+        // Tipping angle of the whole column: its centre of mass 17/9 m above the base.
+        let tipping = (0.5_f64 / (17.0 / 9.0)).atan();
+        for p in [0, n] {
+            bound_holds_at_random_states(&col, p, tipping, 2000, &mut next);
+            let opening = (0..100)
+                .flat_map(|k| [-big_a, big_a].map(|ag| (tipping * f64::from(k) / 100.0, ag)))
+                .find(|&(theta, ag)| {
+                    let m = margins(&mut chain, n, p, theta, ag, 0.0);
+                    top.iter().any(|&d| m[d] > 0.0)
+                });
+            assert!(
+                opening.is_some(),
+                "corner {p}: the upper interface never opens"
+            );
+            assert!(mono
+                .reaction_bounds(p, 0.0, big_a)
+                .any(|(_, bound, _)| bound > 0.0));
+        }
+        assert!(mono.impacts_keep_it(&ModelOptions::default()));
+
+        let col = Column::new(vec![base, Block::rectangle(0.5, 2.0, 2500.0)]).unwrap();
+        let mut mono = Monolith::of_column(&col, g);
+        for p in [0, n] {
+            assert!(mono
+                .reaction_bounds(p, 0.0, 0.0)
+                .any(|(_, bound, _)| bound == f64::INFINITY));
+        }
+        assert!(!mono.impacts_keep_it(&ModelOptions::default()));
+        let corner = Status::of_dof(0, n);
+        let opened = RATES.iter().any(|&rate| {
+            let mut statuses = vec![corner, Status::Closed];
+            let mut rates = vec![0.0; 2 * n];
+            rates[0] = -corner.sign() * rate;
+            let mass = col.mass_matrix(&col.pose(&[0.0; 4]));
+            impact_model(
+                &mass,
+                &mut statuses,
+                &mut rates,
+                0,
+                &ModelOptions::default(),
+            )
+            .is_ok()
+                && statuses[1].is_open()
+        });
+        assert!(
+            opened,
+            "a monolith impact about the right corner opens the upper interface"
+        );
     }
 }
