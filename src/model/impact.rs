@@ -48,6 +48,13 @@ pub(crate) fn check_positive_definite(mass: &[f64], m: usize) -> Result<(), Rock
 
 /// Validates the inputs shared by both models: sizes, symmetry, finiteness, positive definiteness.
 pub(crate) fn check_mass(n: usize, mass: &[f64]) -> Result<(), RockingError> {
+    check_mass_size(n, mass)?;
+    configuration::check_symmetric(mass, 2 * n)?;
+    Ok(())
+}
+
+/// The size checks of [`check_mass`]: `n` and `mass.len() = (2n)²`.
+pub(crate) fn check_mass_size(n: usize, mass: &[f64]) -> Result<(), RockingError> {
     configuration::check_size(n)?;
     let m = 2 * n;
     if mass.len() != m * m {
@@ -60,7 +67,6 @@ pub(crate) fn check_mass(n: usize, mass: &[f64]) -> Result<(), RockingError> {
             ),
         ));
     }
-    configuration::check_symmetric(mass, m)?;
     Ok(())
 }
 
