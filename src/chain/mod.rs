@@ -555,10 +555,35 @@ impl Chain {
         out: &mut [f64],
         scratch: &mut Vec<[f64; 2]>,
     ) {
+        assert_eq!(out.len(), 2 * self.n_joints());
+        self.velocity_load_sums(pose, phi, rates, scratch);
+        for (d, o) in out.iter_mut().enumerate() {
+            *o = self.velocity_load_entry(pose, scratch, d);
+        }
+    }
+
+    /// Entry `d` of [`Chain::velocity_load_into`] from the sums [`Chain::velocity_load_sums`]
+    /// left in `scratch` (the same arithmetic): for the DOFs a caller reads, not all `2J`.
+    #[inline]
+    pub fn velocity_load_entry(&self, pose: &ChainPose, scratch: &[[f64; 2]], d: usize) -> f64 {
+        let (nj, nb) = (self.n_joints(), self.n_bodies());
+        let (centre_acc, sums) = scratch.split_at(nb + 1);
+        let k = (if d < nj { d } else { d - nj }).min(nb);
+        let p = self.pivot(pose, d);
+        -(centre_acc[k][0] - cross(p, sums[k]))
+    }
+
+    /// The suffix sums of [`Chain::velocity_load_into`] into `scratch` (length `2 (bodies + 1)`).
+    pub fn velocity_load_sums(
+        &self,
+        pose: &ChainPose,
+        phi: &[f64],
+        rates: &[f64],
+        scratch: &mut Vec<[f64; 2]>,
+    ) {
         let (nj, nb) = (self.n_joints(), self.n_bodies());
         assert_eq!(rates.len(), 2 * nj);
         assert_eq!(phi.len(), 2 * nj);
-        assert_eq!(out.len(), 2 * nj);
         scratch.clear();
         scratch.resize(2 * (nb + 1), [0.0; 2]);
         let (centre_acc, sums) = scratch.split_at_mut(nb + 1);
@@ -597,11 +622,6 @@ impl Chain {
             force = [force[0] + m * a[0], force[1] + m * a[1]];
             centre_acc[j] = [moment, 0.0];
             sums[j] = force;
-        }
-        for (d, o) in out.iter_mut().enumerate() {
-            let k = (if d < nj { d } else { d - nj }).min(nb);
-            let p = self.pivot(pose, d);
-            *o = -(centre_acc[k][0] - cross(p, sums[k]));
         }
     }
 }

@@ -513,19 +513,25 @@ impl ConstrainedProblem {
 
 /// The two corners of each closed interface (generator index pairs), as [`ConeProblem::new`].
 pub(crate) fn groups_of(gens: &[Generator]) -> Vec<[usize; 2]> {
-    let mut members: Vec<Vec<usize>> = Vec::new();
+    // Per group: its first two members and how many it has (a group of exactly two is kept),
+    // in one allocation rather than one list per group.
+    let mut members: Vec<([usize; 2], usize)> = Vec::new();
     for (i, g) in gens.iter().enumerate() {
         if let Some(k) = g.group {
             if members.len() <= k {
-                members.resize(k + 1, Vec::new());
+                members.resize(k + 1, ([0; 2], 0));
             }
-            members[k].push(i);
+            let (first, count) = &mut members[k];
+            if *count < 2 {
+                first[*count] = i;
+            }
+            *count += 1;
         }
     }
     members
         .into_iter()
-        .filter(|m| m.len() == 2)
-        .map(|m| [m[0], m[1]])
+        .filter(|&(_, count)| count == 2)
+        .map(|(pair, _)| pair)
         .collect()
 }
 
