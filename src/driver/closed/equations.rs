@@ -119,8 +119,12 @@ impl<'a> LoopEquations<'a> {
         let gdot = self.chain.closure_rate_of(pose, &self.rates);
         let nf = open.len();
         let k = nf + 3;
-        self.kkt.clear();
+        // Every entry but the zero `3 × 3` block is written below (`M_FF` whole, `G_F` and its
+        // transpose), so only that block is cleared, not the whole matrix.
         self.kkt.resize(k * k, 0.0);
+        for r in nf..k {
+            self.kkt[r * k + nf..(r + 1) * k].fill(0.0);
+        }
         self.rhs.clear();
         self.rhs.resize(k, 0.0);
         self.pivots.clear();
