@@ -143,13 +143,18 @@ impl ConstrainedProblem {
                 a[i * p + j] = s;
                 a[j * p + i] = s;
             }
-            b[i] = gens[i].terms().iter().map(|&(d, c)| c * rhs[d]).sum();
-            for row in 0..nc {
-                cg[row * p + i] = gens[i]
-                    .terms()
-                    .iter()
-                    .map(|&(d, c)| c * g[row * m + d])
-                    .sum();
+            // A unit generator's sums have one term: `−0.0 + x` is `x` to the bit (a zero
+            // keeps its sign), so the term is taken as it is.
+            if let [(d, c)] = *ti {
+                b[i] = c * rhs[d];
+                for row in 0..nc {
+                    cg[row * p + i] = c * g[row * m + d];
+                }
+            } else {
+                b[i] = ti.iter().map(|&(d, c)| c * rhs[d]).sum();
+                for row in 0..nc {
+                    cg[row * p + i] = ti.iter().map(|&(d, c)| c * g[row * m + d]).sum();
+                }
             }
         }
         let dmax = (0..p).fold(0.0_f64, |acc, i| acc.max(a[i * p + i]));
