@@ -152,6 +152,51 @@ fn cross(a: [f64; 2], b: [f64; 2]) -> f64 {
     a[0] * b[1] - a[1] * b[0]
 }
 
+/// A DOF's share of the mass entries: its joint `k` (clamped to the bodies), pivot `p`, and the
+/// suffix sums after `k` with `e = c_k − p`. The entry of a pair takes the sums of the larger
+/// joint, and `c_k − P` of the other DOF's pivot is formed as before, so that every entry is
+/// `s0 · dot(c_k − P_row, c_k − P_col) + I_k` with the same operations as
+/// [`Chain::mass_entry_of`]'s.
+#[derive(Clone, Copy)]
+struct MassDof {
+    k: usize,
+    p: [f64; 2],
+    s0: f64,
+    g: [f64; 2],
+    polar: f64,
+    e: [f64; 2],
+}
+
+impl MassDof {
+    #[inline]
+    fn new(pose: &ChainPose, k: usize, p: [f64; 2]) -> MassDof {
+        let g = pose.suffix_centre[k];
+        MassDof {
+            k,
+            p,
+            s0: pose.suffix_mass[k],
+            g,
+            polar: pose.suffix_polar[k],
+            e: sub(g, p),
+        }
+    }
+
+    /// The entry of the pair (`self` the row, `col` the column): the sums of `max(k_row, k_col)`.
+    #[inline]
+    fn entry(&self, col: &MassDof) -> f64 {
+        let (s0, polar, d_row, d_col) = if col.k >= self.k {
+            (col.s0, col.polar, sub(col.g, self.p), col.e)
+        } else {
+            (self.s0, self.polar, self.e, sub(self.g, col.p))
+        };
+        if s0 == 0.0 {
+            0.0
+        } else {
+            s0 * dot(d_row, d_col) + polar
+        }
+    }
+}
+
 impl Chain {
     /// Validates bodies and joints: masses and inertias finite and positive, centres finite,
     /// normals finite and non-zero (they are normalised), half widths finite and positive, and
@@ -418,32 +463,18 @@ impl Chain {
         let nb = self.n_bodies();
         // Each DOF's joint (clamped to the bodies: `max(j_a, j_b).min(N)` is the larger of the
         // clamped joints) and pivot once (the entries' arithmetic as before).
-        let dofs: Vec<(usize, [f64; 2])> = (0..m)
-            .map(|a| ((a % nj).min(nb), self.pivot(pose, a)))
+        let dofs: Vec<MassDof> = (0..m)
+            .map(|a| MassDof::new(pose, (a % nj).min(nb), self.pivot(pose, a)))
             .collect();
-        let (mass, centre, polar) = (
-            &pose.suffix_mass[..=nb],
-            &pose.suffix_centre[..=nb],
-            &pose.suffix_polar[..=nb],
-        );
         // Row by row without a zero fill (a zeroed allocation of this size costs more than the
         // rows): the entries left of the diagonal copied from the rows above.
         let mut out = Vec::with_capacity(m * m);
-        for (a, &(ka, pa)) in dofs.iter().enumerate() {
+        for (a, row) in dofs.iter().enumerate() {
             for b in 0..a {
                 let v = out[b * m + a];
                 out.push(v);
             }
-            out.extend(dofs[a..].iter().map(|&(kb, pb)| {
-                let k = ka.max(kb);
-                let s0 = mass[k];
-                if s0 == 0.0 {
-                    0.0
-                } else {
-                    let g = centre[k];
-                    s0 * dot(sub(g, pa), sub(g, pb)) + polar[k]
-                }
-            }));
+            out.extend(dofs[a..].iter().map(|col| row.entry(col)));
         }
         out
     }
@@ -555,10 +586,35 @@ impl Chain {
         out: &mut [f64],
         scratch: &mut Vec<[f64; 2]>,
     ) {
+        assert_eq!(out.len(), 2 * self.n_joints());
+        self.velocity_load_sums(pose, phi, rates, scratch);
+        for (d, o) in out.iter_mut().enumerate() {
+            *o = self.velocity_load_entry(pose, scratch, d);
+        }
+    }
+
+    /// Entry `d` of [`Chain::velocity_load_into`] from the sums [`Chain::velocity_load_sums`]
+    /// left in `scratch` (the same arithmetic): for the DOFs a caller reads, not all `2J`.
+    #[inline]
+    pub fn velocity_load_entry(&self, pose: &ChainPose, scratch: &[[f64; 2]], d: usize) -> f64 {
+        let (nj, nb) = (self.n_joints(), self.n_bodies());
+        let (centre_acc, sums) = scratch.split_at(nb + 1);
+        let k = (if d < nj { d } else { d - nj }).min(nb);
+        let p = self.pivot(pose, d);
+        -(centre_acc[k][0] - cross(p, sums[k]))
+    }
+
+    /// The suffix sums of [`Chain::velocity_load_into`] into `scratch` (length `2 (bodies + 1)`).
+    pub fn velocity_load_sums(
+        &self,
+        pose: &ChainPose,
+        phi: &[f64],
+        rates: &[f64],
+        scratch: &mut Vec<[f64; 2]>,
+    ) {
         let (nj, nb) = (self.n_joints(), self.n_bodies());
         assert_eq!(rates.len(), 2 * nj);
         assert_eq!(phi.len(), 2 * nj);
-        assert_eq!(out.len(), 2 * nj);
         scratch.clear();
         scratch.resize(2 * (nb + 1), [0.0; 2]);
         let (centre_acc, sums) = scratch.split_at_mut(nb + 1);
@@ -597,11 +653,6 @@ impl Chain {
             force = [force[0] + m * a[0], force[1] + m * a[1]];
             centre_acc[j] = [moment, 0.0];
             sums[j] = force;
-        }
-        for (d, o) in out.iter_mut().enumerate() {
-            let k = (if d < nj { d } else { d - nj }).min(nb);
-            let p = self.pivot(pose, d);
-            *o = -(centre_acc[k][0] - cross(p, sums[k]));
         }
     }
 }

@@ -22,13 +22,34 @@ use crate::model::configuration::{self, Status};
 /// Kinetic energy `½ vᵀMv` of a DOF velocity vector for the row-major `m × m` mass matrix.
 pub fn kinetic_energy(mass: &[f64], velocity: &[f64]) -> f64 {
     let m = velocity.len();
-    let mut e = 0.0;
-    for (r, vr) in velocity.iter().enumerate() {
-        if *vr == 0.0 {
-            continue;
+    // Each row's sum over the moving DOFs only: a still DOF's term is `±0.0` (finite entries),
+    // which leaves every partial sum as it is but a zero's sign, so a sum that ends at zero is
+    // taken again over every DOF and each is the full `sum()`'s to the bit.
+    let mut stack = [0_usize; 64];
+    let mut heap = Vec::new();
+    let moving: &[usize] = if m <= stack.len() {
+        let mut n = 0;
+        for (d, v) in velocity.iter().enumerate() {
+            if *v != 0.0 {
+                stack[n] = d;
+                n += 1;
+            }
         }
+        &stack[..n]
+    } else {
+        heap.extend((0..m).filter(|&d| velocity[d] != 0.0));
+        &heap
+    };
+    let mut e = 0.0;
+    for &r in moving {
         let row = &mass[r * m..(r + 1) * m];
-        e += vr * row.iter().zip(velocity).map(|(a, b)| a * b).sum::<f64>();
+        let s: f64 = moving.iter().map(|&c| row[c] * velocity[c]).sum();
+        let s = if s == 0.0 {
+            row.iter().zip(velocity).map(|(a, b)| a * b).sum::<f64>()
+        } else {
+            s
+        };
+        e += velocity[r] * s;
     }
     0.5 * e
 }
@@ -48,6 +69,13 @@ pub(crate) fn check_positive_definite(mass: &[f64], m: usize) -> Result<(), Rock
 
 /// Validates the inputs shared by both models: sizes, symmetry, finiteness, positive definiteness.
 pub(crate) fn check_mass(n: usize, mass: &[f64]) -> Result<(), RockingError> {
+    check_mass_size(n, mass)?;
+    configuration::check_symmetric(mass, 2 * n)?;
+    Ok(())
+}
+
+/// The size checks of [`check_mass`]: `n` and `mass.len() = (2n)²`.
+pub(crate) fn check_mass_size(n: usize, mass: &[f64]) -> Result<(), RockingError> {
     configuration::check_size(n)?;
     let m = 2 * n;
     if mass.len() != m * m {
@@ -60,7 +88,6 @@ pub(crate) fn check_mass(n: usize, mass: &[f64]) -> Result<(), RockingError> {
             ),
         ));
     }
-    configuration::check_symmetric(mass, m)?;
     Ok(())
 }
 

@@ -7,7 +7,7 @@ use super::{
 };
 use crate::chain::ChainPose;
 use crate::model::configuration::Status;
-use crate::model::constrained::impact_model_constrained;
+use crate::model::constrained::impact_model_constrained_symmetric;
 
 /// Closings located within this share of the step of the earliest are one event (the closing
 /// set of one impact): far above the located zeros' error (the cubic interpolant's `O(dt⁴)` on
@@ -108,7 +108,8 @@ impl Runner<'_> {
             .fold(0.0, f64::max);
         let mass = self.chain.mass_matrix(&pose);
         let g = self.chain.closure_matrix(&pose);
-        let report = impact_model_constrained(
+        // The chain's mass matrix is symmetric to the bit (its lower triangle copied).
+        let report = impact_model_constrained_symmetric(
             &mass,
             &g,
             &mut s.statuses,

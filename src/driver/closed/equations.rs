@@ -16,7 +16,6 @@ pub struct LoopEquations<'a> {
     kkt: Vec<f64>,
     rhs: Vec<f64>,
     pose: ChainPose,
-    velocity: Vec<f64>,
     scratch: Vec<[f64; 2]>,
     screen: Vec<f64>,
     /// The open DOFs' joints and pivots in the pose (`Chain::dof_pivot`).
@@ -78,7 +77,6 @@ impl<'a> LoopEquations<'a> {
             kkt: Vec::new(),
             rhs: Vec::new(),
             pose: ChainPose::default(),
-            velocity: Vec::new(),
             scratch: Vec::new(),
             screen: Vec::new(),
             pivots: Vec::new(),
@@ -104,7 +102,6 @@ impl<'a> LoopEquations<'a> {
         v: &[f64],
         out: &mut [f64],
     ) -> bool {
-        let m = self.chain.n_dofs();
         self.phi.iter_mut().for_each(|p| *p = 0.0);
         self.rates.iter_mut().for_each(|p| *p = 0.0);
         for (i, &d) in open.iter().enumerate() {
@@ -115,19 +112,19 @@ impl<'a> LoopEquations<'a> {
         // system is the same to the bit): `M_FF`, `q_F`, `f_F`, `G_F` and `Ġ v`.
         self.chain.pose_into(&self.phi, &mut self.pose);
         let pose = &self.pose;
-        self.velocity.resize(m, 0.0);
-        self.chain.velocity_load_into(
-            pose,
-            &self.phi,
-            &self.rates,
-            &mut self.velocity,
-            &mut self.scratch,
-        );
+        // The velocity terms' suffix sums; the entries of the open DOFs from them (a closed
+        // DOF's, for the screen, in `current_holds`).
+        self.chain
+            .velocity_load_sums(pose, &self.phi, &self.rates, &mut self.scratch);
         let gdot = self.chain.closure_rate_of(pose, &self.rates);
         let nf = open.len();
         let k = nf + 3;
-        self.kkt.clear();
+        // Every entry but the zero `3 × 3` block is written below (`M_FF` whole, `G_F` and its
+        // transpose), so only that block is cleared, not the whole matrix.
         self.kkt.resize(k * k, 0.0);
+        for r in nf..k {
+            self.kkt[r * k + nf..(r + 1) * k].fill(0.0);
+        }
         self.rhs.clear();
         self.rhs.resize(k, 0.0);
         self.pivots.clear();
@@ -141,7 +138,8 @@ impl<'a> LoopEquations<'a> {
                 a[i * k + nf + r] = g;
                 a[(nf + r) * k + i] = g;
             }
-            b[i] = self.chain.load_entry(pose, di, ag, self.gravity) + self.velocity[di];
+            b[i] = self.chain.load_entry(pose, di, ag, self.gravity)
+                + self.chain.velocity_load_entry(pose, &self.scratch, di);
         }
         for r in 0..3 {
             b[nf + r] = -gdot[r];
@@ -196,7 +194,8 @@ impl<'a> LoopEquations<'a> {
                         .zip(&a)
                         .map(|(&pj, &aj)| self.chain.mass_entry_of(pose, pd, pj) * aj)
                         .sum();
-                    let load = self.chain.load_entry(pose, d, ag, self.gravity) + self.velocity[d];
+                    let load = self.chain.load_entry(pose, d, ag, self.gravity)
+                        + self.chain.velocity_load_entry(pose, &self.scratch, d);
                     let p = self.chain.pivot(pose, d);
                     let gmu = mu[0] + p[1] * mu[1] - p[0] * mu[2];
                     worst = worst.min(sign * (ma - load + gmu));

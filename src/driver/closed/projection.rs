@@ -134,6 +134,7 @@ pub(super) fn project_positions_posed(
     let size = |r: [f64; 3]| r[1].hypot(r[2]).max(r[0].abs() * reach);
     let depth = |d: usize, x: f64| if d < m / 2 { -x } else { x };
     let mut r = chain.closure_residual(pose);
+    let mut trial_pose = ChainPose::default();
     for _ in 0..iterations {
         if size(r) == 0.0 {
             break;
@@ -170,13 +171,15 @@ pub(super) fn project_positions_posed(
         let Some(trial) = trial else {
             break;
         };
-        let trial_pose = chain.pose(&trial);
+        // The trial's pose in the memory of the last one (a pose is rebuilt whole).
+        chain.pose_into(&trial, &mut trial_pose);
         let trial_r = chain.closure_residual(&trial_pose);
         if size(trial_r) >= size(r) {
             break;
         }
         phi.copy_from_slice(&trial);
-        (*pose, r) = (trial_pose, trial_r);
+        std::mem::swap(pose, &mut trial_pose);
+        r = trial_r;
     }
     size(r)
 }

@@ -285,7 +285,15 @@ impl PivotedQr {
     pub fn multipliers(&self, w: &[f64], mu: &mut [f64]) {
         let (c, rank) = (self.c, self.rank);
         mu.iter_mut().for_each(|m| *m = 0.0);
-        let mut nu = vec![0.0; rank];
+        // `ν` on the stack for the loops' three rows (and up to eight), else on the heap.
+        let mut stack = [0.0; 8];
+        let mut heap = Vec::new();
+        let nu: &mut [f64] = if rank <= stack.len() {
+            &mut stack[..rank]
+        } else {
+            heap.resize(rank, 0.0);
+            &mut heap
+        };
         for i in (0..rank).rev() {
             let mut s = w[i];
             for j in i + 1..rank {

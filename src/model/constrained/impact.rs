@@ -16,7 +16,7 @@ use crate::error::{ErrorKind, RockingError};
 use crate::model::cone::{ConeProblem, ConeSolution, Generator, ModelOptions, ModelReport};
 use crate::model::configuration::{self, Status};
 use crate::model::constrained::{check_constraints, problem::ConstrainedProblem, solve};
-use crate::model::impact::{check_mass, check_positive_definite, kinetic_energy};
+use crate::model::impact::{check_mass, check_mass_size, check_positive_definite, kinetic_energy};
 
 /// Applies the impact model of a closed chain in place.
 ///
@@ -38,8 +38,41 @@ pub fn impact_model_constrained(
     options: &ModelOptions,
 ) -> Result<ModelReport, RockingError> {
     options.validate()?;
+    check_mass(statuses.len(), mass)?;
+    impact_model_constrained_checked(mass, constraints, statuses, velocity, closing, options)
+}
+
+/// [`impact_model_constrained`] for a mass matrix symmetric to the bit by construction
+/// ([`crate::chain::Chain::mass_matrix`]: its lower triangle is a copy of the upper): the
+/// symmetry sweep of [`check_mass`], whose verdict is then always a pass, is not taken; the
+/// size and finiteness checks are. The same answers (and errors) as
+/// [`impact_model_constrained`] for such a matrix.
+pub(crate) fn impact_model_constrained_symmetric(
+    mass: &[f64],
+    constraints: &[f64],
+    statuses: &mut [Status],
+    velocity: &mut [f64],
+    closing: &[bool],
+    options: &ModelOptions,
+) -> Result<ModelReport, RockingError> {
+    options.validate()?;
     let n = statuses.len();
-    check_mass(n, mass)?;
+    check_mass_size(n, mass)?;
+    configuration::check_finite("mass", mass)?;
+    debug_assert!(check_mass(n, mass).is_ok());
+    impact_model_constrained_checked(mass, constraints, statuses, velocity, closing, options)
+}
+
+/// The model once the options and the mass matrix have passed their checks.
+fn impact_model_constrained_checked(
+    mass: &[f64],
+    constraints: &[f64],
+    statuses: &mut [Status],
+    velocity: &mut [f64],
+    closing: &[bool],
+    options: &ModelOptions,
+) -> Result<ModelReport, RockingError> {
+    let n = statuses.len();
     let m = 2 * n;
     configuration::check_dof_vector("velocity", velocity, m)?;
     configuration::check_finite("velocity", velocity)?;
@@ -110,6 +143,7 @@ pub fn impact_model_constrained(
     let open_before: Vec<bool> = statuses.iter().map(|s| s.is_open()).collect();
     let zero_rhs = vec![0.0; nc];
     let n_imp = options.n_impacts;
+    let mut moving: Vec<usize> = Vec::with_capacity(m);
     for step in 1..=n_imp {
         let mut gens = Vec::with_capacity(2 * n);
         for (j, s) in st.iter().enumerate() {
@@ -145,13 +179,20 @@ pub fn impact_model_constrained(
                 }
             });
         }
+        // `M v`, each row's sum over the moving DOFs only: the terms of still ones are `±0.0`
+        // (finite entries), which leave every partial sum as it is but a zero's sign; a sum that
+        // ends at zero is taken again over every DOF, so each entry is the full `sum()`'s.
+        moving.clear();
+        moving.extend((0..m).filter(|&d| v[d] != 0.0));
         let mut rhs = vec![0.0; m];
         for (r, o) in rhs.iter_mut().enumerate() {
-            *o = mass[r * m..(r + 1) * m]
-                .iter()
-                .zip(&v)
-                .map(|(a, b)| a * b)
-                .sum();
+            let row = &mass[r * m..(r + 1) * m];
+            let s: f64 = moving.iter().map(|&d| row[d] * v[d]).sum();
+            *o = if s == 0.0 {
+                row.iter().zip(&v).map(|(a, b)| a * b).sum()
+            } else {
+                s
+            };
         }
         let (sol, y, scaled_gens): (ConeSolution, Vec<f64>, Vec<Generator>) = if nc == 0 {
             let problem = ConeProblem::new(gens, mass, m, &rhs, options.tolerance)?;

@@ -18,6 +18,7 @@ mod problem;
 mod projection;
 
 pub use impact::impact_model_constrained;
+pub(crate) use impact::impact_model_constrained_symmetric;
 pub use opening::opening_model_constrained;
 
 use crate::error::{ErrorKind, RockingError};

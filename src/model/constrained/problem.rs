@@ -55,6 +55,13 @@ pub(crate) struct FaceWork {
     h: Vec<f64>,
     factor: Vec<f64>,
     rhs: Vec<f64>,
+    /// Scratch of the solves: `Qᵀ b̂_S`, the reduced right-hand side, the gradient, the rows'
+    /// multipliers, the unit vector of [`FaceWork::null_weight`].
+    g: Vec<f64>,
+    z: Vec<f64>,
+    grad: Vec<f64>,
+    mu_rows: Vec<f64>,
+    unit: Vec<f64>,
     /// Face solution `ŷ_S`, in the order of the set.
     pub y: Vec<f64>,
     /// Multipliers of the rows used (length `nc`, zero for rows not used).
@@ -65,12 +72,16 @@ impl FaceWork {
     /// Length of the projection of `e_idx` on the null space of the last face's constraint
     /// columns: zero when generator `idx` of the face cannot move without breaking the
     /// constraints (its column is independent of the others'), so that its exact step is zero.
-    pub fn null_weight(&self, idx: usize) -> f64 {
+    pub fn null_weight(&mut self, idx: usize) -> f64 {
         let k = self.y.len();
-        let mut e = vec![0.0; k];
+        let mut e = std::mem::take(&mut self.unit);
+        e.clear();
+        e.resize(k, 0.0);
         e[idx] = 1.0;
         self.qr.apply_qt(&mut e);
-        e[self.qr.rank..].iter().map(|x| x * x).sum::<f64>().sqrt()
+        let w = e[self.qr.rank..].iter().map(|x| x * x).sum::<f64>().sqrt();
+        self.unit = e;
+        w
     }
 }
 
@@ -132,13 +143,18 @@ impl ConstrainedProblem {
                 a[i * p + j] = s;
                 a[j * p + i] = s;
             }
-            b[i] = gens[i].terms().iter().map(|&(d, c)| c * rhs[d]).sum();
-            for row in 0..nc {
-                cg[row * p + i] = gens[i]
-                    .terms()
-                    .iter()
-                    .map(|&(d, c)| c * g[row * m + d])
-                    .sum();
+            // A unit generator's sums have one term: `−0.0 + x` is `x` to the bit (a zero
+            // keeps its sign), so the term is taken as it is.
+            if let [(d, c)] = *ti {
+                b[i] = c * rhs[d];
+                for row in 0..nc {
+                    cg[row * p + i] = c * g[row * m + d];
+                }
+            } else {
+                b[i] = ti.iter().map(|&(d, c)| c * rhs[d]).sum();
+                for row in 0..nc {
+                    cg[row * p + i] = ti.iter().map(|&(d, c)| c * g[row * m + d]).sum();
+                }
             }
         }
         let dmax = (0..p).fold(0.0_f64, |acc, i| acc.max(a[i * p + i]));
@@ -417,20 +433,28 @@ impl ConstrainedProblem {
         };
         let (k, c, p) = (set.len(), rows.len(), self.p());
         let free = k - rank;
-        let mut g: Vec<f64> = set.iter().map(|&s| self.cone.b[s]).collect();
+        let mut g = std::mem::take(&mut ws.g);
+        g.clear();
+        g.extend(set.iter().map(|&s| self.cone.b[s]));
         ws.qr.apply_qt(&mut g);
-        let mut z: Vec<f64> = (rank..k)
-            .map(|i| g[i] - (0..rank).map(|j| ws.h[i * k + j] * ws.y[j]).sum::<f64>())
-            .collect();
+        let mut z = std::mem::take(&mut ws.z);
+        z.clear();
+        z.extend(
+            (rank..k).map(|i| g[i] - (0..rank).map(|j| ws.h[i * k + j] * ws.y[j]).sum::<f64>()),
+        );
+        ws.g = g;
         let mut condition = 1.0;
         if free > 0 {
             cholesky::solve(&ws.factor, free, &mut z);
             condition = cholesky::condition_estimate(&ws.factor, free);
         }
         ws.y[rank..].copy_from_slice(&z);
+        ws.z = z;
         ws.qr.apply_q(&mut ws.y);
         // Objective and multipliers: Kᵀ μ = b̂_S − Â_SS ŷ.
-        let mut grad = vec![0.0; k];
+        let mut grad = std::mem::take(&mut ws.grad);
+        grad.clear();
+        grad.resize(k, 0.0);
         let mut quad = 0.0;
         let mut lin = 0.0;
         for (i, &r) in set.iter().enumerate() {
@@ -444,13 +468,17 @@ impl ConstrainedProblem {
             grad[i] = self.cone.b[r] - ay;
         }
         ws.qr.apply_qt(&mut grad);
-        let mut mu_rows = vec![0.0; c];
+        let mut mu_rows = std::mem::take(&mut ws.mu_rows);
+        mu_rows.clear();
+        mu_rows.resize(c, 0.0);
         ws.qr.multipliers(&grad, &mut mu_rows);
+        ws.grad = grad;
         ws.mu.clear();
         ws.mu.resize(self.nc, 0.0);
         for (&row, &v) in rows.iter().zip(&mu_rows) {
             ws.mu[row] = v;
         }
+        ws.mu_rows = mu_rows;
         Ok(Some(FaceInfo {
             objective: 0.5 * quad - lin,
             rank,
@@ -490,19 +518,25 @@ impl ConstrainedProblem {
 
 /// The two corners of each closed interface (generator index pairs), as [`ConeProblem::new`].
 pub(crate) fn groups_of(gens: &[Generator]) -> Vec<[usize; 2]> {
-    let mut members: Vec<Vec<usize>> = Vec::new();
+    // Per group: its first two members and how many it has (a group of exactly two is kept),
+    // in one allocation rather than one list per group.
+    let mut members: Vec<([usize; 2], usize)> = Vec::new();
     for (i, g) in gens.iter().enumerate() {
         if let Some(k) = g.group {
             if members.len() <= k {
-                members.resize(k + 1, Vec::new());
+                members.resize(k + 1, ([0; 2], 0));
             }
-            members[k].push(i);
+            let (first, count) = &mut members[k];
+            if *count < 2 {
+                first[*count] = i;
+            }
+            *count += 1;
         }
     }
     members
         .into_iter()
-        .filter(|m| m.len() == 2)
-        .map(|m| [m[0], m[1]])
+        .filter(|&(_, count)| count == 2)
+        .map(|(pair, _)| pair)
         .collect()
 }
 
