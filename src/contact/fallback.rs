@@ -7,7 +7,7 @@
 //! 20 000 sweeps.
 
 use super::blocks::by_size;
-use super::friction::{ContactProblem, JointStatus, Slip, SolveFailure, B3};
+use super::friction::{ContactProblem, JointStatus, Slip, SolveFailure, SolveReport, B3};
 
 /// A variable of the LCP.
 #[derive(Clone, Copy, Debug)]
@@ -153,6 +153,67 @@ impl ContactProblem {
         Ok(())
     }
 
+    /// The fallback tried first where the active set method cycles (with `sweep_fallback`):
+    /// rounds of nonsmooth Gauss–Seidel sweeps from zero impulses (8, then 32, then 128 more),
+    /// each followed by the active set method started from the statuses of the sweeps'
+    /// impulses. `true` when one of those ends with statuses that satisfy the conditions (the
+    /// active set method's own test, its tolerances): the solution the other fallbacks would
+    /// reach, to round-off, where it is unique.
+    pub(super) fn sweeps_then_active_set(
+        &mut self,
+        statuses: &mut [JointStatus],
+        tol_u: f64,
+        p_floor: f64,
+        report: &mut SolveReport,
+    ) -> bool {
+        for p in self.p.iter_mut() {
+            *p = [0.0; 3];
+        }
+        let mut sweep = 0;
+        for round in [8, 32, 128] {
+            for _ in 0..round {
+                let (change, size) = self.gauss_seidel_sweep(sweep);
+                sweep += 1;
+                if change <= 1e-12 * size || size == 0.0 {
+                    break;
+                }
+            }
+            let mut saved = std::mem::take(&mut self.gs_saved);
+            saved.clear();
+            saved.extend_from_slice(&self.p[..self.n]);
+            self.statuses_from_impulses(statuses);
+            if self.active_set_from(statuses, tol_u, p_floor, 12, report) {
+                self.gs_saved = saved;
+                return true;
+            }
+            self.p[..self.n].copy_from_slice(&saved);
+            self.gs_saved = saved;
+        }
+        false
+    }
+
+    /// One symmetric half sweep (bottom up for even `sweep`, top down for odd) of the
+    /// nonsmooth Gauss–Seidel iteration: the largest change of an impulse and the largest
+    /// impulse.
+    fn gauss_seidel_sweep(&mut self, sweep: usize) -> (f64, f64) {
+        let n = self.n;
+        let mut change = 0.0_f64;
+        let mut size = 0.0_f64;
+        for i in 0..n {
+            let k = if sweep % 2 == 0 { i } else { n - 1 - i };
+            let old = self.p[k];
+            let Some(new) = self.local_solve(k) else {
+                continue;
+            };
+            self.p[k] = new;
+            for a in 0..3 {
+                change = change.max((new[a] - old[a]).abs());
+                size = size.max(new[a].abs());
+            }
+        }
+        (change, size)
+    }
+
     /// The nonsmooth Gauss–Seidel iteration: each joint's local problem (its 3 × 3 block, the
     /// neighbours' impulses fixed) solved exactly by trying its statuses in a fixed order;
     /// symmetric sweeps (bottom up, then top down) until the impulses change by less than `1e-12`
@@ -161,26 +222,12 @@ impl ContactProblem {
         &mut self,
         statuses: &mut [JointStatus],
     ) -> Result<bool, SolveFailure> {
-        let n = self.n;
         for p in self.p.iter_mut() {
             *p = [0.0; 3];
         }
         let mut converged = false;
         for sweep in 0..20_000 {
-            let mut change = 0.0_f64;
-            let mut size = 0.0_f64;
-            for i in 0..n {
-                let k = if sweep % 2 == 0 { i } else { n - 1 - i };
-                let old = self.p[k];
-                let Some(new) = self.local_solve(k) else {
-                    continue;
-                };
-                self.p[k] = new;
-                for a in 0..3 {
-                    change = change.max((new[a] - old[a]).abs());
-                    size = size.max(new[a].abs());
-                }
-            }
+            let (change, size) = self.gauss_seidel_sweep(sweep);
             if change <= 1e-12 * size || size == 0.0 {
                 converged = true;
                 break;
