@@ -406,14 +406,22 @@ impl ContactProblem {
             self.history.push(sig);
         }
         report.fallback = true;
-        if self.sweep_fallback && self.sweeps_then_active_set(statuses, tol_u, p_floor, &mut report)
-        {
-            return Ok(report);
+        if self.sweep_fallback {
+            self.clip_impulses();
+            if self.sweeps_then_active_set(statuses, tol_u, p_floor, &mut report, &[8, 32, 128]) {
+                return Ok(report);
+            }
         }
         if self.solve_lemke(statuses).is_ok() {
             return Ok(report);
         }
         report.gauss_seidel = true;
+        // Lemke's algorithm leaves the sweeps' impulses: go on with them.
+        if self.sweep_fallback
+            && self.sweeps_then_active_set(statuses, tol_u, p_floor, &mut report, &[512, 2048])
+        {
+            return Ok(report);
+        }
         report.inexact = !self.solve_gauss_seidel(statuses)?;
         Ok(report)
     }

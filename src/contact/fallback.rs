@@ -153,26 +153,52 @@ impl ContactProblem {
         Ok(())
     }
 
+    /// The last impulses of the active set method made admissible (normal impulses of
+    /// unilateral ends at least zero, inactive ends' zero, the tangential one within the cone):
+    /// the start of [`Self::sweeps_then_active_set`] where it cycled.
+    pub(super) fn clip_impulses(&mut self) {
+        for k in 0..self.n {
+            let jc = self.joints[k];
+            let mut p = self.p[k];
+            for c in 0..2 {
+                if !jc.active[c] {
+                    p[c] = 0.0;
+                } else if !jc.bilateral[c] {
+                    p[c] = p[c].max(0.0);
+                }
+            }
+            if !(jc.active[0] || jc.active[1]) || jc.mu == 0.0 {
+                p[2] = 0.0;
+            } else if jc.mu.is_finite() {
+                let bound = jc.mu * (p[0] + p[1]).max(0.0);
+                p[2] = p[2].clamp(-bound, bound);
+            }
+            if !p.iter().all(|x| x.is_finite()) {
+                p = [0.0; 3];
+            }
+            self.p[k] = p;
+        }
+    }
+
     /// The fallback tried first where the active set method cycles (with `sweep_fallback`):
-    /// rounds of nonsmooth Gauss–Seidel sweeps from zero impulses (8, then 32, then 128 more),
-    /// each followed by the active set method started from the statuses of the sweeps'
-    /// impulses. `true` when one of those ends with statuses that satisfy the conditions (the
-    /// active set method's own test, its tolerances): the solution the other fallbacks would
-    /// reach, to round-off, where it is unique.
+    /// rounds of nonsmooth Gauss–Seidel sweeps from the impulses in `p` (of `rounds[0]`
+    /// sweeps, then `rounds[1]` more, ...), each followed by the active set method started from
+    /// the statuses of the sweeps' impulses. `true` when one of those ends with statuses that
+    /// satisfy the conditions (the active set method's own test, its tolerances): the solution
+    /// the other fallbacks would reach, to round-off, where it is unique. Otherwise `p` is left
+    /// with the sweeps' impulses.
     pub(super) fn sweeps_then_active_set(
         &mut self,
         statuses: &mut [JointStatus],
         tol_u: f64,
         p_floor: f64,
         report: &mut SolveReport,
+        rounds: &[usize],
     ) -> bool {
-        for p in self.p.iter_mut() {
-            *p = [0.0; 3];
-        }
         let mut sweep = 0;
-        for round in [8, 32, 128] {
+        for &round in rounds {
             for _ in 0..round {
-                let (change, size) = self.gauss_seidel_sweep(sweep);
+                let (change, size) = self.gauss_seidel_sweep(sweep, true);
                 sweep += 1;
                 if change <= 1e-12 * size || size == 0.0 {
                     break;
@@ -195,14 +221,14 @@ impl ContactProblem {
     /// One symmetric half sweep (bottom up for even `sweep`, top down for odd) of the
     /// nonsmooth Gauss–Seidel iteration: the largest change of an impulse and the largest
     /// impulse.
-    fn gauss_seidel_sweep(&mut self, sweep: usize) -> (f64, f64) {
+    fn gauss_seidel_sweep(&mut self, sweep: usize, warm: bool) -> (f64, f64) {
         let n = self.n;
         let mut change = 0.0_f64;
         let mut size = 0.0_f64;
         for i in 0..n {
             let k = if sweep % 2 == 0 { i } else { n - 1 - i };
             let old = self.p[k];
-            let Some(new) = self.local_solve(k) else {
+            let Some(new) = self.local_solve(k, warm) else {
                 continue;
             };
             self.p[k] = new;
@@ -227,7 +253,7 @@ impl ContactProblem {
         }
         let mut converged = false;
         for sweep in 0..20_000 {
-            let (change, size) = self.gauss_seidel_sweep(sweep);
+            let (change, size) = self.gauss_seidel_sweep(sweep, self.sweep_fallback);
             if change <= 1e-12 * size || size == 0.0 {
                 converged = true;
                 break;
@@ -243,7 +269,9 @@ impl ContactProblem {
 
     /// Exact solution of joint `k`'s local problem with its neighbours' impulses fixed: the first
     /// status (in a fixed order) whose solution satisfies the conditions, else the least violating.
-    fn local_solve(&self, k: usize) -> Option<[f64; 3]> {
+    /// With `warm`, the status of the joint's current impulses is tried first (the sweeps of
+    /// [`Self::sweeps_then_active_set`], where it rarely changes from one sweep to the next).
+    fn local_solve(&self, k: usize, warm: bool) -> Option<[f64; 3]> {
         let n = self.n;
         let jc = self.joints[k];
         if !(jc.active[0] || jc.active[1]) {
@@ -266,9 +294,35 @@ impl ContactProblem {
                 }
             }
         }
-        let wl = &self.wd[k];
         let friction = jc.mu > 0.0;
         let scale_u = r.iter().fold(0.0_f64, |m, x| m.max(x.abs())).max(1e-300);
+        if warm {
+            let p = self.p[k];
+            let pattern = [
+                jc.active[0] && (jc.bilateral[0] || p[0] > 0.0),
+                jc.active[1] && (jc.bilateral[1] || p[1] > 0.0),
+            ];
+            let normal = p[0] + p[1];
+            let sigma = if !((pattern[0] || pattern[1]) && friction) {
+                f64::NAN
+            } else if jc.mu.is_finite()
+                && normal > 0.0
+                && p[2].abs() >= jc.mu * normal * (1.0 - 1e-9)
+            {
+                if p[2] > 0.0 {
+                    -1.0
+                } else {
+                    1.0
+                }
+            } else {
+                0.0
+            };
+            if let Some((p, viol)) = self.local_try(k, &r, scale_u, pattern, sigma) {
+                if viol <= 1e-12 {
+                    return Some(p);
+                }
+            }
+        }
         let mut best: Option<([f64; 3], f64)> = None;
         for pattern in [[true, true], [true, false], [false, true], [false, false]] {
             if (pattern[0] && !jc.active[0]) || (pattern[1] && !jc.active[1]) {
@@ -288,66 +342,9 @@ impl ContactProblem {
                 &[f64::NAN]
             };
             for &sigma in slips {
-                let stick = sigma == 0.0;
-                let slide = !stick && !sigma.is_nan();
-                let mut idx = [0usize; 3];
-                let mut m = 0;
-                for c in 0..2 {
-                    if pattern[c] {
-                        idx[m] = c;
-                        m += 1;
-                    }
-                }
-                if stick {
-                    idx[m] = 2;
-                    m += 1;
-                }
-                let mut a = [[0.0; 3]; 3];
-                let mut rhs = [0.0; 3];
-                for (ii, &row) in idx[..m].iter().enumerate() {
-                    rhs[ii] = -r[row];
-                    for (jj, &col) in idx[..m].iter().enumerate() {
-                        a[ii][jj] = wl[row][col];
-                        if slide && col < 2 {
-                            a[ii][jj] += wl[row][2] * (-sigma * jc.mu);
-                        }
-                    }
-                }
-                let Some(x) = solve_small(&a, &rhs, m) else {
+                let Some((p, viol)) = self.local_try(k, &r, scale_u, pattern, sigma) else {
                     continue;
                 };
-                let mut p = [0.0; 3];
-                for (ii, &col) in idx[..m].iter().enumerate() {
-                    p[col] = x[ii];
-                }
-                if slide {
-                    p[2] = -sigma * jc.mu * (p[0] + p[1]);
-                }
-                let mut u = r;
-                for i in 0..3 {
-                    for j in 0..3 {
-                        u[i] += wl[i][j] * p[j];
-                    }
-                }
-                let pscale = p.iter().fold(0.0_f64, |m, x| m.max(x.abs())).max(1e-300);
-                let mut viol = 0.0_f64;
-                for c in 0..2 {
-                    if !jc.active[c] || jc.bilateral[c] {
-                        continue;
-                    }
-                    if pattern[c] {
-                        viol = viol.max(-p[c] / pscale);
-                    } else {
-                        viol = viol.max(-u[c] / scale_u);
-                    }
-                }
-                if any && friction && jc.mu.is_finite() {
-                    if stick {
-                        viol = viol.max((p[2].abs() - jc.mu * (p[0] + p[1])) / pscale);
-                    } else {
-                        viol = viol.max(-sigma * u[2] / scale_u);
-                    }
-                }
                 if viol <= 1e-12 {
                     return Some(p);
                 }
@@ -357,6 +354,84 @@ impl ContactProblem {
             }
         }
         best.map(|(p, _)| p)
+    }
+
+    /// Joint `k`'s local solution for the closed ends `pattern` and the slip `sigma` (`0`
+    /// stick, `±1` slipping with `U_t` of that sign, NaN no tangential unknown), its neighbours'
+    /// impulses in `r`: the impulses and their largest relative violation of the conditions;
+    /// `None` when the local system is singular.
+    #[inline(always)]
+    fn local_try(
+        &self,
+        k: usize,
+        r: &[f64; 3],
+        scale_u: f64,
+        pattern: [bool; 2],
+        sigma: f64,
+    ) -> Option<([f64; 3], f64)> {
+        let jc = self.joints[k];
+        let wl = &self.wd[k];
+        let friction = jc.mu > 0.0;
+        let any = pattern[0] || pattern[1];
+        let stick = sigma == 0.0;
+        let slide = !stick && !sigma.is_nan();
+        let mut idx = [0usize; 3];
+        let mut m = 0;
+        for c in 0..2 {
+            if pattern[c] {
+                idx[m] = c;
+                m += 1;
+            }
+        }
+        if stick {
+            idx[m] = 2;
+            m += 1;
+        }
+        let mut a = [[0.0; 3]; 3];
+        let mut rhs = [0.0; 3];
+        for (ii, &row) in idx[..m].iter().enumerate() {
+            rhs[ii] = -r[row];
+            for (jj, &col) in idx[..m].iter().enumerate() {
+                a[ii][jj] = wl[row][col];
+                if slide && col < 2 {
+                    a[ii][jj] += wl[row][2] * (-sigma * jc.mu);
+                }
+            }
+        }
+        let x = solve_small(&a, &rhs, m)?;
+        let mut p = [0.0; 3];
+        for (ii, &col) in idx[..m].iter().enumerate() {
+            p[col] = x[ii];
+        }
+        if slide {
+            p[2] = -sigma * jc.mu * (p[0] + p[1]);
+        }
+        let mut u = *r;
+        for i in 0..3 {
+            for j in 0..3 {
+                u[i] += wl[i][j] * p[j];
+            }
+        }
+        let pscale = p.iter().fold(0.0_f64, |m, x| m.max(x.abs())).max(1e-300);
+        let mut viol = 0.0_f64;
+        for c in 0..2 {
+            if !jc.active[c] || jc.bilateral[c] {
+                continue;
+            }
+            if pattern[c] {
+                viol = viol.max(-p[c] / pscale);
+            } else {
+                viol = viol.max(-u[c] / scale_u);
+            }
+        }
+        if any && friction && jc.mu.is_finite() {
+            if stick {
+                viol = viol.max((p[2].abs() - jc.mu * (p[0] + p[1])) / pscale);
+            } else {
+                viol = viol.max(-sigma * u[2] / scale_u);
+            }
+        }
+        Some((p, viol))
     }
 }
 
