@@ -477,3 +477,91 @@ fn solve_sized<const M: usize>(a: &B3, b: &[f64; 3]) -> Option<[f64; 3]> {
     }
     Some(x)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::super::friction::{ContactProblem, JointStatus, SolveReport};
+    use super::super::moreau::{SchemeOptions, Stepper};
+    use crate::ground::excitation::Excitation;
+    use crate::ground::records::read_at2;
+    use crate::model::column::{Block, Column};
+
+    /// The tolerances `solve` takes for a problem as set.
+    fn tolerances(pr: &ContactProblem) -> (f64, f64) {
+        let mut scale_u = 0.0_f64;
+        let mut wmax = 0.0_f64;
+        for k in 0..pr.n {
+            for a in 0..3 {
+                scale_u = scale_u.max(pr.b[k][a].abs());
+                wmax = wmax.max(pr.wd[k][a][a]);
+            }
+        }
+        let p_floor = if wmax > 0.0 { scale_u / wmax } else { 0.0 };
+        (1e-10 * scale_u.max(1e-300), p_floor)
+    }
+
+    /// The sweeps and the active set method from their statuses (the fallback of
+    /// `energy_consistent`) reach Lemke's solution, to round-off, on the problems of a
+    /// chattering twenty-drum column (its steps', impacts' and projections' problems), started
+    /// from zero impulses.
+    #[test]
+    fn sweeps_reach_lemkes_solution() {
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+        let rec = read_at2(&dir.join("examples/records/synthetic.AT2")).unwrap();
+        let motion = Excitation::record(rec.scaled_to_pga(4.0).unwrap()).unwrap();
+        let n = 20;
+        let column = Column::new(vec![Block::rectangle(1.0, 2.0, 5000.0); n]).unwrap();
+        let options = SchemeOptions {
+            energy_consistent: true,
+            ..SchemeOptions::default()
+        };
+        let mut st = Stepper::new(&column, vec![0.7; n], options);
+        let (mut compared, mut not_reached, mut largest) = (0, 0, 0.0_f64);
+        for i in 0..8000 {
+            if st.step(1e-3, &motion).is_err() {
+                break;
+            }
+            if i % 4 != 0 {
+                continue;
+            }
+            for base in [&st.problem, &st.projection] {
+                let (mut a, mut b) = (base.clone(), base.clone());
+                let mut sa = vec![JointStatus::default(); n];
+                let mut sb = vec![JointStatus::default(); n];
+                if a.solve_lemke(&mut sa).is_err() {
+                    continue;
+                }
+                b.p.iter_mut().for_each(|p| *p = [0.0; 3]);
+                let (tol_u, p_floor) = tolerances(&b);
+                let mut report = SolveReport::default();
+                let rounds = [8, 32, 128, 512, 2048];
+                if !b.sweeps_then_active_set(&mut sb, tol_u, p_floor, &mut report, &rounds) {
+                    not_reached += 1;
+                    continue;
+                }
+                let scale = a.p.iter().flatten().fold(0.0_f64, |m, x| m.max(x.abs()));
+                if scale == 0.0 {
+                    continue;
+                }
+                for k in 0..n {
+                    for c in 0..3 {
+                        let d = (a.p[k][c] - b.p[k][c]).abs() / scale;
+                        largest = largest.max(d);
+                        assert!(
+                            d <= 1e-8,
+                            "step {i}, joint {k}: {:?} against {:?}",
+                            a.p[k],
+                            b.p[k]
+                        );
+                    }
+                }
+                compared += 1;
+            }
+        }
+        println!(
+            "{compared} problems, largest difference {largest:.1e} of the largest impulse; \
+             {not_reached} not reached by the sweeps"
+        );
+        assert!(compared >= 1000, "{compared} problems compared");
+    }
+}
