@@ -2,7 +2,8 @@
 # The full drum suite (docs/multidrum.md, "The drum suite") in 16 shards, two processes at a
 # time, then its figures:  bench/drums/run.sh ROCKING_BINARY OUT_DIR [RECORDS_DIR]
 # Every run is deterministic; the shards' union is the suite whatever their order.
-# BENCH_FLAGS passes options of the scheme, e.g. BENCH_FLAGS=--consistent (consistent_gap_suite.csv;
+# BENCH_FLAGS passes options of the scheme, e.g. BENCH_FLAGS=--consistent (consistent_sweeps_suite.csv;
+# consistent_gap_suite.csv is the option before the sweeps of its cycling problems;
 # consistent_suite.csv is the option before its impact gap tolerance).
 set -e
 BIN=${1:?rocking binary}; OUT=${2:?output folder}

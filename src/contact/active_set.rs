@@ -284,6 +284,43 @@ impl ContactProblem {
         changed
     }
 
+    /// One active set solve from `statuses` (no least-index stage): `true` if it ends with
+    /// statuses that satisfy the conditions within `max_iterations` solves and without a cycle.
+    pub(super) fn active_set_from(
+        &mut self,
+        statuses: &mut [JointStatus],
+        tol_u: f64,
+        p_floor: f64,
+        max_iterations: usize,
+        report: &mut SolveReport,
+    ) -> bool {
+        self.history.clear();
+        let mut from = 0;
+        for _ in 0..max_iterations {
+            report.iterations += 1;
+            if !self.linear_solve(statuses, from) {
+                return false;
+            }
+            let mut scale_p = 0.0_f64;
+            for p in &self.p {
+                for x in p {
+                    scale_p = larger(scale_p, x.abs());
+                }
+            }
+            let tol_p = 1e-10 * scale_p.max(p_floor).max(1e-300);
+            match self.update_statuses(statuses, tol_u, tol_p, false) {
+                None => return true,
+                Some(k) => from = k,
+            }
+            let sig = Self::signature(statuses);
+            if self.history.contains(&sig) {
+                return false;
+            }
+            self.history.push(sig);
+        }
+        false
+    }
+
     fn signature(statuses: &[JointStatus]) -> u64 {
         // FNV-1a over the status codes: deterministic, no allocation.
         let mut h: u64 = 0xcbf2_9ce4_8422_2325;
@@ -369,10 +406,22 @@ impl ContactProblem {
             self.history.push(sig);
         }
         report.fallback = true;
+        if self.sweep_fallback {
+            self.clip_impulses();
+            if self.sweeps_then_active_set(statuses, tol_u, p_floor, &mut report, &[8, 32, 128]) {
+                return Ok(report);
+            }
+        }
         if self.solve_lemke(statuses).is_ok() {
             return Ok(report);
         }
         report.gauss_seidel = true;
+        // Lemke's algorithm leaves the sweeps' impulses: go on with them.
+        if self.sweep_fallback
+            && self.sweeps_then_active_set(statuses, tol_u, p_floor, &mut report, &[512, 2048])
+        {
+            return Ok(report);
+        }
         report.inexact = !self.solve_gauss_seidel(statuses)?;
         Ok(report)
     }

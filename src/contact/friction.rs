@@ -146,6 +146,12 @@ pub struct ContactProblem {
     pub(super) next: Vec<JointStatus>,
     pub(super) viol: Vec<f64>,
     pub(super) lemke: Lemke,
+    /// Where the active set method cycles, try the nonsmooth Gauss–Seidel sweeps and the active
+    /// set method from their statuses before Lemke's algorithm ([`super::fallback`]); set by the
+    /// stepper with `energy_consistent`.
+    pub(super) sweep_fallback: bool,
+    /// The sweeps' impulses while the active set method is tried from them.
+    pub(super) gs_saved: Vec<[f64; 3]>,
 }
 
 /// Inverse of the leading `m × m` block (`m ≤ 3`) by the adjugate; `None` when the block is
@@ -252,6 +258,8 @@ impl ContactProblem {
             next: vec![JointStatus::default(); n],
             viol: vec![0.0; n],
             lemke: Lemke::default(),
+            sweep_fallback: false,
+            gs_saved: Vec::with_capacity(n),
         }
     }
 

@@ -285,6 +285,8 @@ impl Stepper {
             q,
             drums,
         };
+        s.problem.sweep_fallback = options.energy_consistent;
+        s.projection.sweep_fallback = options.energy_consistent;
         s.update_geometry();
         s
     }
