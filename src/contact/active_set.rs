@@ -301,13 +301,7 @@ impl ContactProblem {
             if !self.linear_solve(statuses, from) {
                 return false;
             }
-            let mut scale_p = 0.0_f64;
-            for p in &self.p {
-                for x in p {
-                    scale_p = larger(scale_p, x.abs());
-                }
-            }
-            let tol_p = 1e-10 * scale_p.max(p_floor).max(1e-300);
+            let tol_p = self.impulse_tolerance(p_floor);
             match self.update_statuses(statuses, tol_u, tol_p, false) {
                 None => return true,
                 Some(k) => from = k,
@@ -319,6 +313,18 @@ impl ContactProblem {
             self.history.push(sig);
         }
         false
+    }
+
+    /// The impulse tolerance of the status test: `1e-10` of the largest impulse, or of `p_floor`
+    /// when every impulse is below it.
+    fn impulse_tolerance(&self, p_floor: f64) -> f64 {
+        let mut scale_p = 0.0_f64;
+        for p in &self.p {
+            for x in p {
+                scale_p = larger(scale_p, x.abs());
+            }
+        }
+        1e-10 * scale_p.max(p_floor).max(1e-300)
     }
 
     fn signature(statuses: &[JointStatus]) -> u64 {
@@ -382,13 +388,7 @@ impl ContactProblem {
             if !self.linear_solve(statuses, from) {
                 break;
             }
-            let mut scale_p = 0.0_f64;
-            for p in &self.p {
-                for x in p {
-                    scale_p = larger(scale_p, x.abs());
-                }
-            }
-            let tol_p = 1e-10 * scale_p.max(p_floor).max(1e-300);
+            let tol_p = self.impulse_tolerance(p_floor);
             match self.update_statuses(statuses, tol_u, tol_p, single) {
                 None => return Ok(report),
                 Some(k) => from = k,
