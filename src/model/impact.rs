@@ -22,9 +22,7 @@ use crate::model::configuration::{self, Status};
 /// Kinetic energy `½ vᵀMv` of a DOF velocity vector for the row-major `m × m` mass matrix.
 pub fn kinetic_energy(mass: &[f64], velocity: &[f64]) -> f64 {
     let m = velocity.len();
-    // Each row's sum over the moving DOFs only: a still DOF's term is `±0.0` (finite entries),
-    // which leaves every partial sum as it is but a zero's sign, so a sum that ends at zero is
-    // taken again over every DOF and each is the full `sum()`'s to the bit.
+    // Each row's sum over the moving DOFs only (`row_times_moving`).
     let mut stack = [0_usize; 64];
     let mut heap = Vec::new();
     let moving: &[usize] = if m <= stack.len() {
@@ -42,16 +40,22 @@ pub fn kinetic_energy(mass: &[f64], velocity: &[f64]) -> f64 {
     };
     let mut e = 0.0;
     for &r in moving {
-        let row = &mass[r * m..(r + 1) * m];
-        let s: f64 = moving.iter().map(|&c| row[c] * velocity[c]).sum();
-        let s = if s == 0.0 {
-            row.iter().zip(velocity).map(|(a, b)| a * b).sum::<f64>()
-        } else {
-            s
-        };
-        e += velocity[r] * s;
+        e += velocity[r] * row_times_moving(&mass[r * m..(r + 1) * m], velocity, moving);
     }
     0.5 * e
+}
+
+/// `row · v`, the sum over every DOF in order, to the bit, taken over `moving` (the DOFs with
+/// `v ≠ 0`, in order) only: with finite entries a still DOF's term is `±0.0`, which leaves every
+/// partial sum as it is but a zero's sign, so only a sum that ends at zero is taken again over
+/// every DOF.
+pub(crate) fn row_times_moving(row: &[f64], v: &[f64], moving: &[usize]) -> f64 {
+    let s: f64 = moving.iter().map(|&c| row[c] * v[c]).sum();
+    if s == 0.0 {
+        row.iter().zip(v).map(|(a, b)| a * b).sum()
+    } else {
+        s
+    }
 }
 
 /// Checks that the row-major `m × m` matrix is positive definite (Cholesky of a copy).

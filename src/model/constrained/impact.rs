@@ -16,7 +16,9 @@ use crate::error::{ErrorKind, RockingError};
 use crate::model::cone::{ConeProblem, ConeSolution, Generator, ModelOptions, ModelReport};
 use crate::model::configuration::{self, Status};
 use crate::model::constrained::{check_constraints, problem::ConstrainedProblem, solve};
-use crate::model::impact::{check_mass, check_mass_size, check_positive_definite, kinetic_energy};
+use crate::model::impact::{
+    check_mass, check_mass_size, check_positive_definite, kinetic_energy, row_times_moving,
+};
 
 /// Applies the impact model of a closed chain in place.
 ///
@@ -179,20 +181,12 @@ fn impact_model_constrained_checked(
                 }
             });
         }
-        // `M v`, each row's sum over the moving DOFs only: the terms of still ones are `±0.0`
-        // (finite entries), which leave every partial sum as it is but a zero's sign; a sum that
-        // ends at zero is taken again over every DOF, so each entry is the full `sum()`'s.
+        // `M v`, each row's sum over the moving DOFs only (`row_times_moving`).
         moving.clear();
         moving.extend((0..m).filter(|&d| v[d] != 0.0));
         let mut rhs = vec![0.0; m];
         for (r, o) in rhs.iter_mut().enumerate() {
-            let row = &mass[r * m..(r + 1) * m];
-            let s: f64 = moving.iter().map(|&d| row[d] * v[d]).sum();
-            *o = if s == 0.0 {
-                row.iter().zip(&v).map(|(a, b)| a * b).sum()
-            } else {
-                s
-            };
+            *o = row_times_moving(&mass[r * m..(r + 1) * m], &v, &moving);
         }
         let (sol, y, scaled_gens): (ConeSolution, Vec<f64>, Vec<Generator>) = if nc == 0 {
             let problem = ConeProblem::new(gens, mass, m, &rhs, options.tolerance)?;
