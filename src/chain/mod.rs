@@ -416,17 +416,7 @@ impl Chain {
     /// Entry `M[a][b]` of the mass matrix of the cut chain in the pose ([`Chain::mass_matrix`]).
     #[inline]
     pub fn mass_entry(&self, pose: &ChainPose, a: usize, b: usize) -> f64 {
-        let nj = self.n_joints();
-        let ka = if a < nj { a } else { a - nj };
-        let kb = if b < nj { b } else { b - nj };
-        let k = ka.max(kb).min(self.n_bodies());
-        let s0 = pose.suffix_mass[k];
-        if s0 == 0.0 {
-            return 0.0;
-        }
-        let g = pose.suffix_centre[k];
-        let (pa, pb) = (self.pivot(pose, a), self.pivot(pose, b));
-        s0 * dot(sub(g, pa), sub(g, pb)) + pose.suffix_polar[k]
+        self.mass_entry_of(pose, self.dof_pivot(pose, a), self.dof_pivot(pose, b))
     }
 
     /// Entry `q[a]` of the load vector ([`Chain::load_vector`]).
