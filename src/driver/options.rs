@@ -185,7 +185,7 @@ pub struct StoppingOptions {
     /// proven (`|Σ m_j ẋ_j| ≤ √(2 M T)`); that no path tips the column with less than
     /// `0.999 E_tip` of potential energy, and that `V ≥ 0` before tipping, is certified by
     /// [`crate::driver::certify_column_barrier`] for [`crate::driver::CERTIFIED_COLUMNS`] only
-    /// (see docs/spectra.md, "Early stop of columns"); there `stop_when_safe` already implies
+    /// (see docs/column-early-stop.md); there `stop_when_safe` already implies
     /// it. This flag forces it on any column, where it is **not proven** (check it against full
     /// runs with `rocking bench spectra --compare`). Ignored without the exact velocity terms
     /// (thesis Eq. 6 does not conserve energy when several interfaces are open) and with

@@ -114,7 +114,7 @@ pub struct SimulationArgs {
     /// Run every simulation to its end (by default a single block stops as soon as an energy
     /// bound proves that the rest of the motion cannot tip it: the same verdicts, faster; with
     /// --lagrangian so do columns of 2 or 3 equal blocks with H/B 3–12, whose bound is
-    /// certified, see docs/spectra.md, "Early stop of columns").
+    /// certified, see docs/column-early-stop.md).
     #[arg(long = "full-runs")]
     pub full_runs: bool,
     /// The exact Lagrangian equations of motion (thesis Eq. 6 plus the velocity terms), which
@@ -123,8 +123,8 @@ pub struct SimulationArgs {
     pub lagrangian: bool,
     /// With --lagrangian, any column of several blocks: stop a run as soon as an energy bound
     /// says the rest of the record cannot tip the column. Already the default where the bound
-    /// is certified (2 or 3 equal blocks, H/B 3–12); elsewhere UNPROVEN (docs/spectra.md,
-    /// "Early stop of columns"; check with `rocking bench spectra --compare`).
+    /// is certified (2 or 3 equal blocks, H/B 3–12); elsewhere UNPROVEN
+    /// (docs/column-early-stop.md; check with `rocking bench spectra --compare`).
     #[arg(long = "column-bound", requires = "lagrangian")]
     pub column_bound: bool,
     /// Threads [default: every core]; the results do not depend on it.

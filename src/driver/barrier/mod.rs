@@ -1,6 +1,6 @@
 //! The potential-energy barrier behind the column's energy-bound stop
 //! ([`super::StoppingOptions::stop_when_safe_column`]), certified by branch and bound with
-//! interval arithmetic (docs/spectra.md, "Early stop of columns").
+//! interval arithmetic (docs/column-early-stop.md).
 //!
 //! The stop is exact if, for a column of `n` equal blocks,
 //! - (L1) `V ≥ 0` in every configuration where no part has tipped, and

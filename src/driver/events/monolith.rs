@@ -1,8 +1,8 @@
 //! The monolith stop of a column under thesis Eq. 6 ([`StopReason::CannotTip`], with
 //! `stopping.stop_when_safe` and `stopping.quiet_after`): after the ground has gone quiet for good,
 //! a column that rocks as one rigid body about a base corner (every other interface closed) can
-//! be proven to go on doing so, and not to tip, to the end of the run (docs/spectra.md, "Early
-//! stop of columns").
+//! be proven to go on doing so, and not to tip, to the end of the run
+//! (docs/column-early-stop.md).
 //!
 //! The proof, by the first instant `τ` at which the column stops rocking as a monolith or closed:
 //! - **Energy.** One DOF open: Eq. 6 is the exact equation of a rigid body turning about a fixed

@@ -1,6 +1,6 @@
 //! The potential-energy barrier behind the column stop
 //! ([`StoppingOptions::stop_when_safe_column`]), certified by `driver::barrier` for 2 and 3
-//! equal blocks (docs/spectra.md, "Early stop of columns"): here its two lemmas checked on many
+//! equal blocks (docs/column-early-stop.md): here its two lemmas checked on many
 //! paths through the driver's own code, and the certificate's closed forms checked against the
 //! driver's potential energy and tipping check. From the straight column, along a
 //! ray of interface rotations (one signed angle per interface: negative about the right corner,
