@@ -251,7 +251,7 @@ pub fn candidate_rules(fit: &[ArchRecord], fit_name: &str) -> Vec<NamedRule> {
     ];
     for ((key, what, x), rule) in factors {
         for (suffix, q, which) in [
-            ("max", 1.0, "the largest"),
+            ("max", 1.0, "the largest of"),
             ("84", 0.84, "the 0.84-fractile of"),
         ] {
             if let Some(c) = fit_factor(fit, x, q) {

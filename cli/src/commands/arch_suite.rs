@@ -35,6 +35,9 @@ pub struct ArchSuiteArgs {
     /// the design rule) and PREFIX-transformed.svg (against f).
     #[arg(long, value_name = "PREFIX")]
     pub svg: Option<PathBuf>,
+    /// With --svg: also write the charts as PNG.
+    #[arg(long, requires = "svg")]
+    pub png: bool,
 }
 
 /// Options of `rocking arch rules`.
@@ -176,7 +179,7 @@ pub fn run_suite(a: &ArchSuiteArgs) -> Result<(), String> {
     if let Some(prefix) = &a.svg {
         let spectra: Vec<ArchOas> = records.into_iter().map(|r| r.oas).collect();
         for (name, chart) in suite_charts(&report, &spectra) {
-            chart.write_named(prefix, name, false)?;
+            chart.write_named(prefix, name, a.png)?;
         }
     }
     Ok(())
