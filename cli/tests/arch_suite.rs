@@ -238,3 +238,48 @@ fn arch_rules_fitted_on_the_far_field_and_tested_out_of_sample() {
         run.stderr
     );
 }
+
+#[test]
+fn arch_rules_of_a_synthetic_set() {
+    let dir = tmp("arch-rules-synthetic");
+    let Some(files) = synthetic_set(&dir) else {
+        return;
+    };
+    // Without t_p the t_p rules are left out.
+    let mut args = vec!["arch", "rules", "--json", "--fit"];
+    args.extend(files.iter().map(String::as_str));
+    let v = json(&args);
+    let keys: Vec<&str> = v["rules"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| r["key"].as_str().unwrap())
+        .collect();
+    assert_eq!(keys, ["0", "a84", "a50", "bmax", "b84", "d"]);
+    // One set only: its folder is its name.
+    assert_eq!(v["sets"].as_array().unwrap().len(), 1);
+    // t_p from a `rocking tp --json`-like list (extra fields ignored): rule c is fitted and
+    // conservative on its own set.
+    let tp = dir.join("tp.json");
+    let rows: Vec<Value> = (0..3)
+        .map(|k| serde_json::json!({"record": format!("synthetic-{k}"), "t_p": 0.2 + 0.05 * k as f64, "a_max": 1.0}))
+        .collect();
+    std::fs::write(&tp, serde_json::to_string(&rows).unwrap()).unwrap();
+    args.extend(["--tp", tp.to_str().unwrap()]);
+    let v = json(&args);
+    let rules = v["rules"].as_array().unwrap();
+    let cmax = rules.iter().find(|r| r["key"] == "cmax").unwrap();
+    assert_eq!(cmax["scores"][0]["unsafe_points"]["points"], 0);
+    assert_eq!(cmax["scores"][0]["unscored"], 0);
+    // A bad t_p names the file and the record.
+    std::fs::write(&tp, r#"[{"record": "synthetic-1", "t_p": -1}]"#).unwrap();
+    let run = common::run(&args);
+    assert!(
+        !run.ok
+            && run
+                .stderr
+                .contains("tp.json: record `synthetic-1`: t_p must be positive"),
+        "{}",
+        run.stderr
+    );
+}

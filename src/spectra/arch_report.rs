@@ -365,3 +365,53 @@ impl ArchOcReport {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::spectra::{linear_levels, log_sizes, OasLevel};
+
+    #[test]
+    fn an_arch_oas_reads_back_from_its_report() {
+        let n = 8;
+        let mut hinges = vec![Status::Closed; n + 1];
+        hinges[1] = Status::from_i8(-1).unwrap();
+        hinges[4] = Status::from_i8(1).unwrap();
+        let o = ArchOas {
+            record: "r".into(),
+            shape: ArchShape {
+                voussoirs: n,
+                ..ArchShape::default()
+            },
+            onset: ArchOnset {
+                lambda: 0.159,
+                hinges,
+                p_unit: 2.37,
+            },
+            sizes: log_sizes(100.0, 1.0, 5),
+            levels: linear_levels(1.5, 3.0, 3)
+                .into_iter()
+                .zip([None, Some(4), Some(2)])
+                .map(|(level, largest_unsafe)| OasLevel {
+                    level,
+                    largest_unsafe,
+                    simulations: 3,
+                })
+                .collect(),
+            gravity: 9.81,
+            runs: ArchRunCounts::default(),
+        };
+        let report = ArchOasReport::of(&o, Some(0.2), 1.0);
+        let text = serde_json::to_string(&report).unwrap();
+        let back: ArchOasReport = serde_json::from_str(&text).unwrap();
+        assert_eq!(back.to_oas().unwrap(), o);
+        let mut bad = back.clone();
+        bad.levels[1].level.largest_unsafe = Some(5);
+        let e = bad.to_oas().unwrap_err().to_string();
+        assert!(e.contains("radius index outside the 5 radii"), "{e}");
+        let mut bad = back;
+        bad.onset.hinges.push((9, 0));
+        let e = bad.to_oas().unwrap_err().to_string();
+        assert!(e.starts_with("onset.hinges: `r`: hinge (9, 0)"), "{e}");
+    }
+}
