@@ -137,7 +137,17 @@ fn arch_suite_names_the_bad_file() {
     std::fs::write(&other, serde_json::to_string(&v).unwrap()).unwrap();
     let run = common::run(["arch", "suite", &files[0], other.to_str().unwrap()]);
     assert!(
-        !run.ok && run.stderr.contains("has other onset"),
+        !run.ok
+            && run
+                .stderr
+                .contains("other.json: spectra: `synthetic-1` has other onset"),
+        "{}",
+        run.stderr
+    );
+    // The same in a fit set of `arch rules`: named, not a rule silently left out.
+    let run = common::run(["arch", "rules", "--fit", &files[0], other.to_str().unwrap()]);
+    assert!(
+        !run.ok && run.stderr.contains("other.json: spectra:"),
         "{}",
         run.stderr
     );

@@ -8,7 +8,7 @@ use std::path::PathBuf;
 
 use clap::Args;
 use rocking::spectra::arch_report::{ArchOasReport, ArchRulesReport, ArchSuiteReport};
-use rocking::spectra::{ArchOas, ArchRecord, RuleScore};
+use rocking::spectra::{characteristic_arch_oas, ArchOas, ArchRecord, RuleScore};
 use serde::Deserialize;
 
 use super::oas::level_chart;
@@ -102,6 +102,18 @@ fn read_set(files: &[PathBuf], tp: &HashMap<String, f64>) -> Result<Vec<ArchReco
     Ok(out)
 }
 
+/// Errors unless every record of a set is on the first one's grid and arch, naming the file.
+fn one_arch(files: &[PathBuf], records: &[ArchRecord]) -> Result<(), String> {
+    let Some(first) = records.first() else {
+        return Ok(());
+    };
+    for (f, r) in files.iter().zip(records).skip(1) {
+        characteristic_arch_oas(&[first.oas.clone(), r.oas.clone()], 1.0, "check")
+            .map_err(|e| format!("{}: {e}", f.display()))?;
+    }
+    Ok(())
+}
+
 /// `record → t_p` of the `--tp` files.
 fn read_tp(files: &[PathBuf]) -> Result<HashMap<String, f64>, String> {
     let mut out = HashMap::new();
@@ -170,6 +182,7 @@ const SCORE_HEADER: &str = "  records    points    ratio: min median    max";
 /// Runs `rocking arch suite`.
 pub fn run_suite(a: &ArchSuiteArgs) -> Result<(), String> {
     let records = read_set(&a.spectra, &HashMap::new())?;
+    one_arch(&a.spectra, &records)?;
     let report = ArchSuiteReport::of(&a.name, &records, &a.fractile).map_err(|e| e.to_string())?;
     if a.json {
         print_json(&report)?;
@@ -348,10 +361,15 @@ pub fn run_rules(a: &ArchRulesArgs) -> Result<(), String> {
     }
     let name = |k: usize, dir: String| a.names.get(k).cloned().unwrap_or(dir);
     let fit = read_set(&a.fit, &tp)?;
+    one_arch(&a.fit, &fit)?;
     let tests = test_sets
         .into_iter()
         .enumerate()
-        .map(|(k, (dir, files))| Ok((name(k + 1, dir), read_set(&files, &tp)?)))
+        .map(|(k, (dir, files))| {
+            let set = read_set(&files, &tp)?;
+            one_arch(&files, &set)?;
+            Ok((name(k + 1, dir), set))
+        })
         .collect::<Result<Vec<_>, String>>()?;
     let fit_name = name(0, a.fit.first().map_or_else(|| ".".into(), |f| folder(f)));
     let report = ArchRulesReport::of(&fit_name, &fit, &tests);
