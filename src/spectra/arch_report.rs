@@ -4,7 +4,11 @@
 use serde::{Deserialize, Serialize};
 
 use super::report::{EnvelopePointReport, LevelReport};
-use super::{ArchOas, ArchOc, ArchRunCounts, ArchShape};
+use super::{
+    arch_suite, candidate_rules, invalid, score_t1, ArchOas, ArchOc, ArchOnset, ArchRecord,
+    ArchRunCounts, ArchShape, NamedRule, RuleScore, SpectraError,
+};
+use crate::model::configuration::Status;
 
 /// The onset of the arch family: `λ`, its mechanism and `p` at `R = 1 m`.
 #[derive(Clone, Debug, Serialize, Deserialize)]
@@ -104,6 +108,199 @@ impl ArchOasReport {
     }
 }
 
+impl ArchOasReport {
+    /// The arch OAS of the report (what `rocking arch suite` reads back): the onset's hinges are
+    /// rebuilt from their list, every index and status is checked.
+    pub fn to_oas(&self) -> Result<ArchOas, SpectraError> {
+        let n_joints = self.shape.voussoirs + 1;
+        let mut hinges = vec![Status::Closed; n_joints];
+        for &(joint, status) in &self.onset.hinges {
+            let s = Status::from_i8(status).filter(|s| s.is_open());
+            match (hinges.get_mut(joint), s) {
+                (Some(h), Some(s)) => *h = s,
+                _ => {
+                    return Err(invalid(
+                        "onset.hinges",
+                        format!(
+                            "`{}`: hinge ({joint}, {status}) is not an open joint of an arch of \
+                             {} voussoirs",
+                            self.record, self.shape.voussoirs
+                        ),
+                    ))
+                }
+            }
+        }
+        if let Some(l) = self.levels.iter().find(|l| {
+            l.level
+                .largest_unsafe
+                .is_some_and(|i| i >= self.sizes.len())
+        }) {
+            return Err(invalid(
+                "levels",
+                format!(
+                    "`{}`: level {} has a radius index outside the {} radii",
+                    self.record,
+                    l.level.level,
+                    self.sizes.len()
+                ),
+            ));
+        }
+        Ok(ArchOas {
+            record: self.record.clone(),
+            shape: self.shape,
+            onset: ArchOnset {
+                lambda: self.onset.lambda,
+                hinges,
+                p_unit: self.onset.p_at_1m,
+            },
+            sizes: self.sizes.clone(),
+            levels: self.levels.iter().map(|l| l.level).collect(),
+            gravity: self.gravity,
+            runs: self.runs.clone(),
+        })
+    }
+}
+
+/// One record of an arch suite: its arch `t₁` and the single-block `t₁` it was checked against.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct ArchSuiteRecordRow {
+    pub record: String,
+    /// The arch's own `t₁ = 1/f_min` (s).
+    pub t1: Option<f64>,
+    pub f_min: Option<f64>,
+    pub level_at_f_min: Option<f64>,
+    pub size_at_f_min: Option<f64>,
+    /// The record's single-block `t₁` (s), when known.
+    pub block_t1: Option<f64>,
+}
+
+/// One fractile of an arch suite (`rocking arch suite`).
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct ArchCharacteristicReport {
+    pub fractile: f64,
+    /// The arch suite's design `t₁ = 1/f_min` of the characteristic transformed OAS (s).
+    pub design_t1: Option<f64>,
+    pub f_min: Option<f64>,
+    pub level_at_f_min: Option<f64>,
+    pub size_at_f_min: Option<f64>,
+    /// The `q`-fractile of the records' own arch `t₁` (s).
+    pub record_t1_fractile: Option<f64>,
+    /// The characteristic arch OAS.
+    pub oas: ArchOasReport,
+    /// The design `t₁` checked against every record's arch OAS.
+    pub check: RuleScore,
+}
+
+/// The suite procedure on arch OAS (`rocking arch suite --json`).
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct ArchSuiteReport {
+    pub name: String,
+    pub shape: ArchShape,
+    pub onset: ArchOnsetReport,
+    pub records: Vec<ArchSuiteRecordRow>,
+    pub characteristic: Vec<ArchCharacteristicReport>,
+    /// Each record's single-block `t₁` checked against its arch OAS (records without one are
+    /// unscored).
+    pub block_rule: RuleScore,
+}
+
+impl ArchSuiteReport {
+    /// The report of the suite `name` of `records` at `fractiles`; records sorted by name.
+    pub fn of(
+        name: &str,
+        records: &[ArchRecord],
+        fractiles: &[f64],
+    ) -> Result<ArchSuiteReport, SpectraError> {
+        if records.is_empty() {
+            return Err(invalid(
+                "records",
+                "an arch suite needs at least one record",
+            ));
+        }
+        let mut records: Vec<&ArchRecord> = records.iter().collect();
+        records.sort_by(|a, b| a.oas.record.cmp(&b.oas.record));
+        let spectra: Vec<ArchOas> = records.iter().map(|r| r.oas.clone()).collect();
+        let characteristic = arch_suite(&spectra, fractiles, name)?
+            .into_iter()
+            .map(|c| {
+                let m = c.oas.f_min();
+                ArchCharacteristicReport {
+                    fractile: c.fractile,
+                    design_t1: c.design_t1,
+                    f_min: m.map(|m| m.f),
+                    level_at_f_min: m.map(|m| m.level),
+                    size_at_f_min: m.map(|m| m.size),
+                    record_t1_fractile: c.record_t1_fractile,
+                    oas: ArchOasReport::of(&c.oas, None, 0.0),
+                    check: c.check,
+                }
+            })
+            .collect();
+        let first = &records[0].oas;
+        Ok(ArchSuiteReport {
+            name: name.to_string(),
+            shape: first.shape,
+            onset: ArchOnsetReport::of(&first.onset),
+            records: records
+                .iter()
+                .map(|r| {
+                    let m = r.oas.f_min();
+                    ArchSuiteRecordRow {
+                        record: r.oas.record.clone(),
+                        t1: r.oas.t1(),
+                        f_min: m.map(|m| m.f),
+                        level_at_f_min: m.map(|m| m.level),
+                        size_at_f_min: m.map(|m| m.size),
+                        block_t1: r.block_t1,
+                    }
+                })
+                .collect(),
+            characteristic,
+            block_rule: score_t1(records.iter().map(|r| (&r.oas, r.block_t1))),
+        })
+    }
+}
+
+/// One candidate rule and its score on each set.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct ArchRuleRow {
+    #[serde(flatten)]
+    pub rule: NamedRule,
+    /// In the order of [`ArchRulesReport::sets`].
+    pub scores: Vec<RuleScore>,
+}
+
+/// Candidate arch design rules fitted on one set and scored on it and on others
+/// (`rocking arch rules --json`).
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct ArchRulesReport {
+    /// The set the rules are fitted on (the first of `sets`).
+    pub fit: String,
+    /// The sets scored: the fit set (in sample), then the test sets (out of sample).
+    pub sets: Vec<String>,
+    pub rules: Vec<ArchRuleRow>,
+}
+
+impl ArchRulesReport {
+    /// The rules fitted on `fit` (named `fit_name`), scored on `fit` and on each of `tests`.
+    pub fn of(fit_name: &str, fit: &[ArchRecord], tests: &[(String, Vec<ArchRecord>)]) -> Self {
+        let sets: Vec<(&str, &[ArchRecord])> = std::iter::once((fit_name, fit))
+            .chain(tests.iter().map(|(n, r)| (n.as_str(), r.as_slice())))
+            .collect();
+        ArchRulesReport {
+            fit: fit_name.to_string(),
+            sets: sets.iter().map(|s| s.0.to_string()).collect(),
+            rules: candidate_rules(fit, fit_name)
+                .into_iter()
+                .map(|rule| ArchRuleRow {
+                    scores: sets.iter().map(|s| rule.rule.score(s.1)).collect(),
+                    rule,
+                })
+                .collect(),
+        }
+    }
+}
+
 /// One grid point of an arch OC.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct ArchOcPointReport {
@@ -166,5 +363,55 @@ impl ArchOcReport {
             runs: oc.runs.clone(),
             seconds,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::spectra::{linear_levels, log_sizes, OasLevel};
+
+    #[test]
+    fn an_arch_oas_reads_back_from_its_report() {
+        let n = 8;
+        let mut hinges = vec![Status::Closed; n + 1];
+        hinges[1] = Status::from_i8(-1).unwrap();
+        hinges[4] = Status::from_i8(1).unwrap();
+        let o = ArchOas {
+            record: "r".into(),
+            shape: ArchShape {
+                voussoirs: n,
+                ..ArchShape::default()
+            },
+            onset: ArchOnset {
+                lambda: 0.159,
+                hinges,
+                p_unit: 2.37,
+            },
+            sizes: log_sizes(100.0, 1.0, 5),
+            levels: linear_levels(1.5, 3.0, 3)
+                .into_iter()
+                .zip([None, Some(4), Some(2)])
+                .map(|(level, largest_unsafe)| OasLevel {
+                    level,
+                    largest_unsafe,
+                    simulations: 3,
+                })
+                .collect(),
+            gravity: 9.81,
+            runs: ArchRunCounts::default(),
+        };
+        let report = ArchOasReport::of(&o, Some(0.2), 1.0);
+        let text = serde_json::to_string(&report).unwrap();
+        let back: ArchOasReport = serde_json::from_str(&text).unwrap();
+        assert_eq!(back.to_oas().unwrap(), o);
+        let mut bad = back.clone();
+        bad.levels[1].level.largest_unsafe = Some(5);
+        let e = bad.to_oas().unwrap_err().to_string();
+        assert!(e.contains("radius index outside the 5 radii"), "{e}");
+        let mut bad = back;
+        bad.onset.hinges.push((9, 0));
+        let e = bad.to_oas().unwrap_err().to_string();
+        assert!(e.starts_with("onset.hinges: `r`: hinge (9, 0)"), "{e}");
     }
 }

@@ -31,9 +31,11 @@
 //! characteristic OAS of a suite, its design `t_1` and the check of the simplified spectra against
 //! every record; `hull.rs` the convex hull of a transformed OAS (Fig. 48–49); `band.rs` `t_1` with
 //! its band over equivalent perturbations (half the step, grids shifted by half a cell, the other
-//! event locator).
+//! event locator); `arch.rs`, `arch_oc.rs` the OAS and OC of arches, `arch_design.rs` the suite
+//! procedure on arch OAS and the candidate arch design rules.
 
 mod arch;
+mod arch_design;
 mod arch_oc;
 #[cfg(feature = "serde")]
 pub mod arch_report;
@@ -54,6 +56,10 @@ mod transformed;
 pub use arch::{
     arch_oas, arch_onset, arch_record_run, ArchCollapse, ArchFailure, ArchOas, ArchOasOptions,
     ArchOnset, ArchRun, ArchRunCounts, ArchShape, ArchSweepOptions, ArchT1Check,
+};
+pub use arch_design::{
+    arch_suite, candidate_rules, characteristic_arch_oas, fit_factor, score_t1, ArchCharacteristic,
+    ArchRecord, ArchRule, NamedRule, RuleScore,
 };
 pub use arch_oc::{arch_overturning_curve, arch_pulse_run, ArchOc};
 pub use band::{t1_band, Perturbation, T1Band};

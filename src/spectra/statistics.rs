@@ -1,5 +1,6 @@
 //! The few statistics a record suite needs: the empirical fractile (the characteristic OAS,
-//! thesis 5.3.1), Pearson's correlation and the least-squares lines of t₁ against t_p (Fig. 53).
+//! thesis 5.3.1), the median, Pearson's correlation and the least-squares lines of t₁ against
+//! t_p (Fig. 53).
 
 /// The empirical `q`-fractile of `values` (`0 < q ≤ 1`): the smallest value `x` of the sample
 /// with `F_n(x) ≥ q`, `F_n` the sample's distribution function (Hyndman–Fan type 1, no
@@ -15,6 +16,19 @@ pub fn fractile(values: &[f64], q: f64) -> Option<f64> {
     // Smallest k (1-based) with k / n >= q; a relative 1e-12 keeps q = k/n exact.
     let k = ((q * n as f64) * (1.0 - 1e-12)).ceil().max(1.0) as usize;
     Some(v[k.min(n) - 1])
+}
+
+/// The sample median: the middle value, or the mean of the two middle values of an even sample
+/// (Python's `statistics.median`); `None` for an empty sample.
+pub fn median(values: &[f64]) -> Option<f64> {
+    let mut v = values.to_vec();
+    v.sort_by(f64::total_cmp);
+    let n = v.len();
+    match n {
+        0 => None,
+        _ if n % 2 == 1 => Some(v[n / 2]),
+        _ => Some(0.5 * (v[n / 2 - 1] + v[n / 2])),
+    }
 }
 
 /// Pearson's correlation coefficient of the pairs `(x, y)`; `None` for fewer than two pairs or a
@@ -71,6 +85,9 @@ mod tests {
         assert_eq!(fractile(&v, 1.0), Some(5.0));
         assert_eq!(fractile(&v, 0.0), None);
         assert_eq!(fractile(&[], 0.5), None);
+        assert_eq!(median(&v), Some(3.0));
+        assert_eq!(median(&[4.0, 1.0, 3.0, 2.0]), Some(2.5));
+        assert_eq!(median(&[]), None);
         // At most a share 1 - q exceeds the fractile.
         let w: Vec<f64> = (0..44).map(|k| ((k * 17) % 44) as f64).collect();
         for q in [0.1, 0.5, 0.84, 0.9] {

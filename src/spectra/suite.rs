@@ -16,35 +16,59 @@ use super::{invalid, statistics, InclinedFit, Oas, OasLevel, SpectraError};
 /// spectrum must be on the first one's grid (levels, sizes, slenderness, blocks, impacts, search,
 /// gravity). Its levels count no simulations of their own (`simulations = 0`).
 pub fn characteristic_oas(spectra: &[Oas], q: f64, name: &str) -> Result<Oas, SpectraError> {
-    if !(q > 0.0 && q <= 1.0) {
-        return Err(invalid("fractile", format!("must be in (0, 1], got {q}")));
-    }
+    valid_fractile(q)?;
     let first = spectra
         .first()
         .ok_or_else(|| invalid("spectra", "a suite needs at least one record"))?;
     same_grid(spectra)?;
-    let levels = (0..first.levels.len())
-        .map(|k| {
-            // A level without an unsafe size counts as size 0, below every size of the grid.
-            let sizes: Vec<f64> = spectra
-                .iter()
-                .map(|o| o.levels[k].largest_unsafe.map_or(0.0, |i| o.sizes[i]))
-                .collect();
-            let x = statistics::fractile(&sizes, q).unwrap_or(0.0);
-            OasLevel {
-                level: first.levels[k].level,
-                largest_unsafe: (x > 0.0)
-                    .then(|| first.sizes.iter().position(|&s| s == x))
-                    .flatten(),
-                simulations: 0,
-            }
-        })
-        .collect();
+    let per_record: Vec<&[OasLevel]> = spectra.iter().map(|o| o.levels.as_slice()).collect();
+    let levels = characteristic_levels(&first.sizes, &per_record, q);
     Ok(Oas {
         record: name.to_string(),
         levels,
         ..first.clone()
     })
+}
+
+/// The characteristic levels of records that share one grid (`sizes`, descending, and the
+/// levels of `records[0]`): at each level the `q`-fractile over the records of the largest
+/// unsafe size, a record with none counting as the smallest value (size 0), as an index on
+/// `sizes` (`None` when the fractile is "none"); `simulations = 0`. The callers check the grid
+/// and `q`: [`characteristic_oas`] for columns, [`super::characteristic_arch_oas`] for arches.
+pub fn characteristic_levels(sizes: &[f64], records: &[&[OasLevel]], q: f64) -> Vec<OasLevel> {
+    let Some(first) = records.first() else {
+        return Vec::new();
+    };
+    (0..first.len())
+        .map(|k| {
+            // A level without an unsafe size counts as size 0, below every size of the grid.
+            let unsafe_sizes: Vec<f64> = records
+                .iter()
+                .map(|levels| levels[k].largest_unsafe.map_or(0.0, |i| sizes[i]))
+                .collect();
+            let x = statistics::fractile(&unsafe_sizes, q).unwrap_or(0.0);
+            OasLevel {
+                level: first[k].level,
+                largest_unsafe: (x > 0.0)
+                    .then(|| sizes.iter().position(|&s| s == x))
+                    .flatten(),
+                simulations: 0,
+            }
+        })
+        .collect()
+}
+
+/// `0 < q ≤ 1`.
+pub(super) fn valid_fractile(q: f64) -> Result<(), SpectraError> {
+    if !(q > 0.0 && q <= 1.0) {
+        return Err(invalid("fractile", format!("must be in (0, 1], got {q}")));
+    }
+    Ok(())
+}
+
+/// Whether two level lists are the same levels (the same values in the same order).
+pub(super) fn same_levels(a: &[OasLevel], b: &[OasLevel]) -> bool {
+    a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x.level == y.level)
 }
 
 /// Errors unless every spectrum is on the first one's grid.
@@ -55,12 +79,7 @@ fn same_grid(spectra: &[Oas]) -> Result<(), SpectraError> {
     for o in &spectra[1..] {
         let differs = if o.sizes != first.sizes {
             Some("sizes")
-        } else if o.levels.len() != first.levels.len()
-            || o.levels
-                .iter()
-                .zip(&first.levels)
-                .any(|(a, b)| a.level != b.level)
-        {
+        } else if !same_levels(&o.levels, &first.levels) {
             Some("levels")
         } else if o.slenderness != first.slenderness {
             Some("slenderness")
@@ -103,7 +122,8 @@ pub struct Tally {
 }
 
 impl Tally {
-    fn add(&mut self, n: usize) {
+    /// Counts a record with `n` such points.
+    pub fn add(&mut self, n: usize) {
         self.points += n;
         self.records += usize::from(n > 0);
     }

@@ -28,6 +28,12 @@ pub enum Arch {
     /// Overturning curve of an arch under a pulse: collapse on a grid of p t_p (log) x
     /// a_p / (λ g) (linear); JSON.
     Oc(ArchOcArgs),
+    /// The suite procedure on arch OAS (`arch oas` JSON): the characteristic arch OAS at
+    /// fractiles, its design t1 (1/f_min) and that t1 checked against every record.
+    Suite(super::arch_suite::ArchSuiteArgs),
+    /// Candidate arch design rules for t1, fitted on one set of arch OAS and scored on it and,
+    /// out of sample, on others.
+    Rules(super::arch_suite::ArchRulesArgs),
 }
 
 impl Arch {
@@ -35,6 +41,8 @@ impl Arch {
         match self {
             Arch::Oas(a) => run_oas(a),
             Arch::Oc(a) => run_oc(a),
+            Arch::Suite(a) => super::arch_suite::run_suite(a),
+            Arch::Rules(a) => super::arch_suite::run_rules(a),
         }
     }
 }

@@ -1,6 +1,7 @@
 //! One module per command of `rocking`.
 
 pub mod arch;
+pub mod arch_suite;
 pub mod design;
 pub mod oas;
 pub mod oc;

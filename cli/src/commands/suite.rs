@@ -58,7 +58,7 @@ pub struct SuiteArgs {
 }
 
 /// A fractile in (0, 1].
-fn fractile(s: &str) -> Result<f64, String> {
+pub(crate) fn fractile(s: &str) -> Result<f64, String> {
     let v: f64 = s.parse().map_err(|_| format!("not a number: {s}"))?;
     if v > 0.0 && v <= 1.0 {
         Ok(v)

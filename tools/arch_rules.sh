@@ -1,0 +1,12 @@
+#!/usr/bin/env bash
+# tools/arch_rules.sh: the data and figures of docs/arch-spectra.md "An arch design rule" (seconds, no simulation).
+set -euo pipefail
+R=${ROCKING:-target/release/rocking}
+mkdir -p docs/data/arch-rules
+$R arch suite docs/data/arch/oas-RSN*.json --name "far field (44)" --svg docs/figures/arch-suite-farfield > docs/data/arch-rules/suite-farfield-N8.txt
+$R arch suite docs/data/arch-nearfield/oas-RSN*.json --name "near field (56)" --svg docs/figures/arch-suite-nearfield > docs/data/arch-rules/suite-nearfield-N8.txt
+$R arch suite docs/data/arch20/oas-RSN*.json --name "far field (44)" --svg docs/figures/arch-suite-farfield-N20 > docs/data/arch-rules/suite-farfield-N20.txt
+args=(--fit docs/data/arch/oas-RSN*.json --test docs/data/arch-nearfield/oas-RSN*.json docs/data/arch20/oas-RSN*.json
+  --tp docs/data/t1-farfield.json --tp docs/data/t1-nearfield.json --names "far field 8,near field 8,far field 20")
+$R arch rules "${args[@]}" --svg docs/figures/arch-rules.svg > docs/data/arch-rules/rules.txt
+$R arch rules "${args[@]}" --json > docs/data/arch-rules/rules.json
