@@ -188,6 +188,23 @@ fn oas_charts(o: &ArchOas, t1: Option<f64>) -> Vec<(&'static str, Chart)> {
             o.shape.thickness_ratio, o.shape.voussoirs, o.record
         )
     };
+    arch_level_charts(
+        [title("Arch OAS"), title("Transformed arch OAS")],
+        (pmax, fmax, lmax),
+        by_p,
+        by_f,
+    )
+}
+
+/// The two charts of an arch OAS (or of a suite's): against the onset mechanism's `p` up to
+/// `pmax` and against `f` up to `fmax`, levels `a_p / (λ g)` up to `lmax`; `titles` in that order.
+pub(crate) fn arch_level_charts(
+    titles: [String; 2],
+    (pmax, fmax, lmax): (f64, f64, f64),
+    by_p: Vec<Series>,
+    by_f: Vec<Series>,
+) -> Vec<(&'static str, Chart)> {
+    let [by_p_title, by_f_title] = titles;
     let relabel = |mut c: Chart| {
         c.y_label = "a_p / (λ g)".into();
         c
@@ -196,7 +213,7 @@ fn oas_charts(o: &ArchOas, t1: Option<f64>) -> Vec<(&'static str, Chart)> {
         (
             "oas",
             relabel(level_chart(
-                title("Arch OAS"),
+                by_p_title,
                 "p of the onset mechanism [1/s]",
                 Scale::Linear,
                 Some((0.0, pmax)),
@@ -207,7 +224,7 @@ fn oas_charts(o: &ArchOas, t1: Option<f64>) -> Vec<(&'static str, Chart)> {
         (
             "transformed",
             relabel(level_chart(
-                title("Transformed arch OAS"),
+                by_f_title,
                 "f = p a_p / (λ g) [1/s]",
                 Scale::Linear,
                 Some((0.0, fmax)),

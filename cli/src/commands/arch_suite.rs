@@ -11,9 +11,8 @@ use rocking::spectra::arch_report::{ArchOasReport, ArchRulesReport, ArchSuiteRep
 use rocking::spectra::{characteristic_arch_oas, ArchOas, ArchRecord, RuleScore};
 use serde::Deserialize;
 
-use super::oas::level_chart;
 use crate::output::print_json;
-use crate::plot::{Chart, Scale, Series, Style, COLORS};
+use crate::plot::{Chart, Series, Style, COLORS};
 
 /// Options of `rocking arch suite`.
 #[derive(Args, Debug)]
@@ -317,34 +316,15 @@ fn suite_charts(r: &ArchSuiteReport, spectra: &[ArchOas]) -> Vec<(&'static str, 
             r.name, r.shape.thickness_ratio, r.shape.voussoirs
         )
     };
-    let relabel = |mut c: Chart| {
-        c.y_label = "a_p / (λ g)".into();
-        c
-    };
-    vec![
-        (
-            "oas",
-            relabel(level_chart(
-                title("Characteristic arch OAS"),
-                "p of the onset mechanism [1/s]",
-                Scale::Linear,
-                Some((0.0, pmax)),
-                lmax,
-                by_p,
-            )),
-        ),
-        (
-            "transformed",
-            relabel(level_chart(
-                title("Transformed characteristic arch OAS"),
-                "f = p a_p / (λ g) [1/s]",
-                Scale::Linear,
-                Some((0.0, fmax)),
-                lmax,
-                by_f,
-            )),
-        ),
-    ]
+    super::arch::arch_level_charts(
+        [
+            title("Characteristic arch OAS"),
+            title("Transformed characteristic arch OAS"),
+        ],
+        (pmax, fmax, lmax),
+        by_p,
+        by_f,
+    )
 }
 
 /// Runs `rocking arch rules`.
