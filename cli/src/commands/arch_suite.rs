@@ -471,7 +471,8 @@ fn rules_chart(r: &ArchRulesReport, sets: &[(&str, &[ArchRecord])]) -> Chart {
                 name: format!("({}) arch t1 = {c:.3} × single-block t1", row.rule.key),
                 points: vec![(0.0, 0.0), (xmax, c * xmax)],
                 style: Style::Dashed,
-                color: COLORS[[7, 4, 6][k % 3]],
+                // The last three colours: the sets take the first (up to five sets).
+                color: COLORS[5 + (k - 1) % 3],
             });
         }
     }
