@@ -301,12 +301,15 @@ fn arch_rules_of_a_synthetic_set() {
 
 #[test]
 fn arch_rules_on_the_thicker_arch_and_the_near_field_with_20_voussoirs() {
-    let (Some(far), Some(t020), Some(near20)) = (
+    let (Some(far), Some(t020), Some(near20), Some(t020near)) = (
         set("docs/data/arch"),
         set("docs/data/arch-t020"),
         set("docs/data/arch20-nearfield"),
+        set("docs/data/arch-t020-nearfield"),
     ) else {
-        eprintln!("skipped: docs/data/arch, arch-t020 or arch20-nearfield absent");
+        eprintln!(
+            "skipped: docs/data/arch, arch-t020, arch20-nearfield or arch-t020-nearfield absent"
+        );
         return;
     };
     let mut args = vec!["arch", "rules", "--json", "--fit"];
@@ -314,6 +317,7 @@ fn arch_rules_on_the_thicker_arch_and_the_near_field_with_20_voussoirs() {
     args.push("--test");
     args.extend(t020.iter().map(String::as_str));
     args.extend(near20.iter().map(String::as_str));
+    args.extend(t020near.iter().map(String::as_str));
     args.extend([
         "--tp",
         "docs/data/t1-farfield.json",
@@ -321,12 +325,14 @@ fn arch_rules_on_the_thicker_arch_and_the_near_field_with_20_voussoirs() {
         "docs/data/t1-nearfield.json",
     ]);
     let v = json(&args);
+    assert_eq!(v["arches"][3]["shape"]["thickness_ratio"], 0.2);
+    assert_eq!(v["arches"][3]["fit_arch"], false);
     assert_eq!(v["arches"][1]["shape"]["thickness_ratio"], 0.2);
     assert_eq!(v["arches"][2]["shape"]["voussoirs"], 20);
     let rules = v["rules"].as_array().unwrap();
     for r in rules {
         let fixed = r["key"].as_str().unwrap().starts_with('a');
-        for k in 1..3 {
+        for k in 1..4 {
             // A fixed t1 is the fit arch's: not scored on another arch; the rest scores every
             // record (each was checked against its single-block t1 and has a t_p).
             assert_eq!(r["scores"][k].is_null(), fixed, "{} {k}", r["key"]);
@@ -352,6 +358,10 @@ fn arch_rules_on_the_thicker_arch_and_the_near_field_with_20_voussoirs() {
     assert_eq!(
         zero["scores"][2]["unsafe_points"]["points"],
         points(&near20)
+    );
+    assert_eq!(
+        zero["scores"][3]["unsafe_points"]["points"],
+        points(&t020near)
     );
     // The text table says why a cell is empty.
     let mut text = args.clone();

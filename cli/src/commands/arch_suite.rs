@@ -471,8 +471,8 @@ fn rules_chart(r: &ArchRulesReport, sets: &[(&str, &[ArchRecord])]) -> Chart {
                 name: format!("({}) arch t1 = {c:.3} × single-block t1", row.rule.key),
                 points: vec![(0.0, 0.0), (xmax, c * xmax)],
                 style: Style::Dashed,
-                // The last three colours: the sets take the first (up to five sets).
-                color: COLORS[5 + (k - 1) % 3],
+                // Black, then the last two colours: the sets take the first six.
+                color: [(0, 0, 0), COLORS[6], COLORS[7]][(k - 1) % 3],
             });
         }
     }
