@@ -240,6 +240,11 @@ fn arch_rules_fitted_on_the_far_field_and_tested_out_of_sample() {
     for k in 0..3 {
         assert_eq!(rule("cmax")["scores"][k]["unscored"], 0);
     }
+    // The 20-voussoir arch is another arch: the far-field suite's design t1 is not scored there.
+    assert_eq!(v["arches"][2]["shape"]["voussoirs"], 20);
+    assert_eq!(v["arches"][2]["fit_arch"], false);
+    assert!(rule("a84")["scores"][2].is_null());
+    assert!(rule("a84")["scores"][1].is_object());
     // Wrong number of names.
     let run = common::run(["arch", "rules", "--fit", &far[0], "--names", "a,b"]);
     assert!(
@@ -289,6 +294,161 @@ fn arch_rules_of_a_synthetic_set() {
             && run
                 .stderr
                 .contains("tp.json: record `synthetic-1`: t_p must be positive"),
+        "{}",
+        run.stderr
+    );
+}
+
+#[test]
+fn arch_rules_on_the_thicker_arch_and_the_near_field_with_20_voussoirs() {
+    let (Some(far), Some(t020), Some(near20), Some(t020near)) = (
+        set("docs/data/arch"),
+        set("docs/data/arch-t020"),
+        set("docs/data/arch20-nearfield"),
+        set("docs/data/arch-t020-nearfield"),
+    ) else {
+        eprintln!(
+            "skipped: docs/data/arch, arch-t020, arch20-nearfield or arch-t020-nearfield absent"
+        );
+        return;
+    };
+    let mut args = vec!["arch", "rules", "--json", "--fit"];
+    args.extend(far.iter().map(String::as_str));
+    args.push("--test");
+    args.extend(t020.iter().map(String::as_str));
+    args.extend(near20.iter().map(String::as_str));
+    args.extend(t020near.iter().map(String::as_str));
+    args.extend([
+        "--tp",
+        "docs/data/t1-farfield.json",
+        "--tp",
+        "docs/data/t1-nearfield.json",
+    ]);
+    let v = json(&args);
+    assert_eq!(v["arches"][3]["shape"]["thickness_ratio"], 0.2);
+    assert_eq!(v["arches"][3]["fit_arch"], false);
+    assert_eq!(v["arches"][1]["shape"]["thickness_ratio"], 0.2);
+    assert_eq!(v["arches"][2]["shape"]["voussoirs"], 20);
+    let rules = v["rules"].as_array().unwrap();
+    for r in rules {
+        let fixed = r["key"].as_str().unwrap().starts_with('a');
+        for k in 1..4 {
+            // A fixed t1 is the fit arch's: not scored on another arch; the rest scores every
+            // record (each was checked against its single-block t1 and has a t_p).
+            assert_eq!(r["scores"][k].is_null(), fixed, "{} {k}", r["key"]);
+            if !fixed {
+                assert_eq!(r["scores"][k]["unscored"], 0, "{} {k}", r["key"]);
+            }
+        }
+    }
+    // The single-block rule's unsafe points on each test set are the records' own counts.
+    let points = |files: &[String]| -> u64 {
+        files
+            .iter()
+            .map(|f| {
+                let r: Value =
+                    serde_json::from_str(&std::fs::read_to_string(common::root().join(f)).unwrap())
+                        .unwrap();
+                r["check"]["violations"].as_u64().unwrap()
+            })
+            .sum()
+    };
+    let zero = rules.iter().find(|r| r["key"] == "0").unwrap();
+    assert_eq!(zero["scores"][1]["unsafe_points"]["points"], points(&t020));
+    assert_eq!(
+        zero["scores"][2]["unsafe_points"]["points"],
+        points(&near20)
+    );
+    assert_eq!(
+        zero["scores"][3]["unsafe_points"]["points"],
+        points(&t020near)
+    );
+    // The text table says why a cell is empty.
+    let mut text = args.clone();
+    text.retain(|a| *a != "--json");
+    let run = common::run(&text);
+    assert!(
+        run.ok
+            && run
+                .stdout
+                .contains("n/a not scored: a fixed t1 of another arch"),
+        "{}",
+        run.stdout
+    );
+}
+
+#[test]
+fn arch_rules_on_another_arch_and_in_sample_records() {
+    let dir = tmp("arch-rules-other");
+    let Some(files) = synthetic_set(&dir) else {
+        return;
+    };
+    // The same records on a thicker arch (another t/R, λ and p₁), in a folder of their own.
+    let other = dir.join("thick");
+    std::fs::create_dir_all(&other).unwrap();
+    let mut thick = Vec::new();
+    for f in &files {
+        let mut v: Value = serde_json::from_str(&std::fs::read_to_string(f).unwrap()).unwrap();
+        v["shape"]["thickness_ratio"] = Value::from(0.2);
+        v["onset"]["lambda"] = Value::from(0.21);
+        v["onset"]["p_at_1m"] = Value::from(2.6);
+        let g = other.join(std::path::Path::new(f).file_name().unwrap());
+        std::fs::write(&g, serde_json::to_string(&v).unwrap()).unwrap();
+        thick.push(g.to_str().unwrap().to_string());
+    }
+    let mut args = vec!["arch", "rules", "--json", "--fit"];
+    args.extend(files.iter().map(String::as_str));
+    args.push("--test");
+    args.extend(thick.iter().map(String::as_str));
+    let v = json(&args);
+    assert_eq!(v["arches"][0]["fit_arch"], true);
+    assert_eq!(v["arches"][1]["fit_arch"], false);
+    for r in v["rules"].as_array().unwrap() {
+        let fixed = r["key"].as_str().unwrap().starts_with('a');
+        assert_eq!(r["scores"][1].is_null(), fixed, "{}", r["key"]);
+    }
+    // The fit set's own records on its own arch as a test set: in sample, named.
+    let copy = dir.join("copy");
+    std::fs::create_dir_all(&copy).unwrap();
+    let dup = copy.join("oas-1.json");
+    std::fs::copy(&files[1], &dup).unwrap();
+    let run = common::run([
+        "arch",
+        "rules",
+        "--fit",
+        &files[0],
+        &files[1],
+        "--test",
+        dup.to_str().unwrap(),
+    ]);
+    assert!(
+        !run.ok
+            && run.stderr.contains(
+                "copy/oas-1.json: record `synthetic-1` is in the fit set, on the same arch"
+            ),
+        "{}",
+        run.stderr
+    );
+    // A test set (folder) mixing arches is an error naming the file.
+    let mixed = dir.join("mixed");
+    std::fs::create_dir_all(&mixed).unwrap();
+    std::fs::copy(&thick[1], mixed.join("oas-a.json")).unwrap();
+    std::fs::copy(&files[2], mixed.join("oas-b.json")).unwrap();
+    let (ma, mb) = (mixed.join("oas-a.json"), mixed.join("oas-b.json"));
+    let run = common::run([
+        "arch",
+        "rules",
+        "--fit",
+        &files[0],
+        "--test",
+        ma.to_str().unwrap(),
+        mb.to_str().unwrap(),
+    ]);
+    assert!(
+        !run.ok
+            && run
+                .stderr
+                .contains("mixed/oas-b.json: spectra: `synthetic-2` has other"),
         "{}",
         run.stderr
     );

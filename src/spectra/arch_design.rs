@@ -168,6 +168,15 @@ pub enum ArchRule {
 }
 
 impl ArchRule {
+    /// Whether the rule may be scored on an arch other than the one it was fitted on. A factor
+    /// on the record's own single-block `t₁` or `t_p` may (the arch enters through the arch
+    /// OAS, its `λ` and its `p`), and so may rule (d), which has no fitted number and is applied
+    /// with the `p₁` of the arch it is scored on. A fixed `t₁` may not: it is the design `t₁` of
+    /// one arch's suite, not a `t₁` of another arch.
+    pub fn transfers_to_other_arches(&self) -> bool {
+        !matches!(self, ArchRule::Fixed(_))
+    }
+
     /// The rule's `t₁` for `r` (s).
     pub fn t1(&self, r: &ArchRecord) -> Option<f64> {
         match *self {
@@ -184,6 +193,15 @@ impl ArchRule {
     pub fn score(&self, records: &[ArchRecord]) -> RuleScore {
         score_t1(records.iter().map(|r| (&r.oas, self.t1(r))))
     }
+}
+
+/// Whether `a` and `b` are OAS of the same arch: shape, onset mechanism (`λ`, `p₁`) and
+/// gravity (the grid may differ).
+pub fn same_arch(a: &ArchOas, b: &ArchOas) -> bool {
+    a.shape == b.shape
+        && a.onset.lambda == b.onset.lambda
+        && a.onset.p_unit == b.onset.p_unit
+        && a.gravity == b.gravity
 }
 
 /// The `q`-fractile (`q = 1`: the largest) over `records` of arch `t₁` / `x(record)`: the factor
@@ -450,6 +468,75 @@ mod tests {
         let mut no_tp = records.clone();
         no_tp[0].t_p = None;
         assert_eq!(c.score(&no_tp).unscored, 1);
+    }
+
+    #[cfg(feature = "serde")]
+    #[test]
+    fn a_fixed_t1_is_not_scored_on_another_arch() {
+        use crate::spectra::arch_report::ArchRulesReport;
+        let records = |spectra: Vec<ArchOas>| -> Vec<ArchRecord> {
+            spectra
+                .into_iter()
+                .zip([0.2, 0.3, 0.25, 0.4, 0.5])
+                .map(|(oas, t)| ArchRecord {
+                    oas,
+                    block_t1: Some(t),
+                    t_p: Some(1.1 * t),
+                })
+                .collect()
+        };
+        let fit = records(suite());
+        // The same arch on other records (renamed), and a thicker arch (other λ, p₁, t/R).
+        let same = records(
+            suite()
+                .into_iter()
+                .map(|mut o| {
+                    o.record += "'";
+                    o
+                })
+                .collect(),
+        );
+        let thicker = records(
+            suite()
+                .into_iter()
+                .map(|mut o| {
+                    o.shape.thickness_ratio = 0.2;
+                    o.onset.lambda = 0.21;
+                    o.onset.p_unit = 2.6;
+                    o
+                })
+                .collect(),
+        );
+        assert!(same_arch(&fit[0].oas, &same[0].oas));
+        assert!(!same_arch(&fit[0].oas, &thicker[0].oas));
+        let tests = vec![("same".to_string(), same), ("thicker".to_string(), thicker)];
+        let r = ArchRulesReport::of("fit", &fit, &tests);
+        let arches: Vec<bool> = r
+            .arches
+            .iter()
+            .map(|a| a.as_ref().unwrap().fit_arch)
+            .collect();
+        assert_eq!(arches, [true, true, false]);
+        assert_eq!(r.arches[2].as_ref().unwrap().onset.p_at_1m, 2.6);
+        for row in &r.rules {
+            let fixed = matches!(row.rule.rule, ArchRule::Fixed(_));
+            assert_eq!(fixed, !row.rule.rule.transfers_to_other_arches());
+            // Every rule on the fit set's arch; a fixed t1 not on the thicker one.
+            assert!(row.scores[0].is_some() && row.scores[1].is_some());
+            assert_eq!(row.scores[2].is_none(), fixed, "{}", row.rule.key);
+            // The same arch and numbers: the same score as in sample.
+            assert_eq!(row.scores[0], row.scores[1], "{}", row.rule.key);
+        }
+        // Rule d is applied with the scored arch's own p₁: its t1 is √g/2.6 × t1,block there.
+        let d = &r
+            .rules
+            .iter()
+            .find(|x| x.rule.key == "d")
+            .unwrap()
+            .rule
+            .rule;
+        let t1 = d.t1(&tests[1].1[0]).unwrap();
+        assert!((t1 - 0.2 * 9.81_f64.sqrt() / 2.6).abs() < 1e-15);
     }
 
     #[test]

@@ -5,8 +5,8 @@ use serde::{Deserialize, Serialize};
 
 use super::report::{EnvelopePointReport, LevelReport};
 use super::{
-    arch_suite, candidate_rules, invalid, score_t1, ArchOas, ArchOc, ArchOnset, ArchRecord,
-    ArchRunCounts, ArchShape, NamedRule, RuleScore, SpectraError,
+    arch_suite, candidate_rules, invalid, same_arch, score_t1, ArchOas, ArchOc, ArchOnset,
+    ArchRecord, ArchRunCounts, ArchShape, NamedRule, RuleScore, SpectraError,
 };
 use crate::model::configuration::Status;
 
@@ -266,8 +266,19 @@ impl ArchSuiteReport {
 pub struct ArchRuleRow {
     #[serde(flatten)]
     pub rule: NamedRule,
-    /// In the order of [`ArchRulesReport::sets`].
-    pub scores: Vec<RuleScore>,
+    /// In the order of [`ArchRulesReport::sets`]; `None`: not scored, the rule does not transfer
+    /// to the set's arch ([`super::ArchRule::transfers_to_other_arches`]: a fixed `t₁` on a set of another
+    /// arch than the fit set's).
+    pub scores: Vec<Option<RuleScore>>,
+}
+
+/// The arch of a set of [`ArchRulesReport`] (its first record's).
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct ArchSetArch {
+    pub shape: ArchShape,
+    pub onset: ArchOnsetReport,
+    /// Whether it is the fit set's arch.
+    pub fit_arch: bool,
 }
 
 /// Candidate arch design rules fitted on one set and scored on it and on others
@@ -278,22 +289,46 @@ pub struct ArchRulesReport {
     pub fit: String,
     /// The sets scored: the fit set (in sample), then the test sets (out of sample).
     pub sets: Vec<String>,
+    /// The arch of each set (`None`: an empty set), in the order of `sets`.
+    pub arches: Vec<Option<ArchSetArch>>,
     pub rules: Vec<ArchRuleRow>,
 }
 
 impl ArchRulesReport {
-    /// The rules fitted on `fit` (named `fit_name`), scored on `fit` and on each of `tests`.
+    /// The rules fitted on `fit` (named `fit_name`), scored on `fit` and on each of `tests`
+    /// (each set of one arch, its first record's). A rule that does not transfer to another
+    /// arch is not scored on a set whose arch differs from the fit set's.
     pub fn of(fit_name: &str, fit: &[ArchRecord], tests: &[(String, Vec<ArchRecord>)]) -> Self {
         let sets: Vec<(&str, &[ArchRecord])> = std::iter::once((fit_name, fit))
             .chain(tests.iter().map(|(n, r)| (n.as_str(), r.as_slice())))
             .collect();
+        let fit_arch = |set: &[ArchRecord]| match (fit.first(), set.first()) {
+            (Some(a), Some(b)) => same_arch(&a.oas, &b.oas),
+            _ => true,
+        };
         ArchRulesReport {
             fit: fit_name.to_string(),
             sets: sets.iter().map(|s| s.0.to_string()).collect(),
+            arches: sets
+                .iter()
+                .map(|s| {
+                    s.1.first().map(|r| ArchSetArch {
+                        shape: r.oas.shape,
+                        onset: ArchOnsetReport::of(&r.oas.onset),
+                        fit_arch: fit_arch(s.1),
+                    })
+                })
+                .collect(),
             rules: candidate_rules(fit, fit_name)
                 .into_iter()
                 .map(|rule| ArchRuleRow {
-                    scores: sets.iter().map(|s| rule.rule.score(s.1)).collect(),
+                    scores: sets
+                        .iter()
+                        .map(|s| {
+                            (fit_arch(s.1) || rule.rule.transfers_to_other_arches())
+                                .then(|| rule.rule.score(s.1))
+                        })
+                        .collect(),
                     rule,
                 })
                 .collect(),

@@ -58,8 +58,8 @@ pub use arch::{
     ArchOnset, ArchRun, ArchRunCounts, ArchShape, ArchSweepOptions, ArchT1Check,
 };
 pub use arch_design::{
-    arch_suite, candidate_rules, characteristic_arch_oas, fit_factor, score_t1, ArchCharacteristic,
-    ArchRecord, ArchRule, NamedRule, RuleScore,
+    arch_suite, candidate_rules, characteristic_arch_oas, fit_factor, same_arch, score_t1,
+    ArchCharacteristic, ArchRecord, ArchRule, NamedRule, RuleScore,
 };
 pub use arch_oc::{arch_overturning_curve, arch_pulse_run, ArchOc};
 pub use band::{t1_band, Perturbation, T1Band};

@@ -8,7 +8,7 @@ use std::path::PathBuf;
 
 use clap::Args;
 use rocking::spectra::arch_report::{ArchOasReport, ArchRulesReport, ArchSuiteReport};
-use rocking::spectra::{characteristic_arch_oas, ArchOas, ArchRecord, RuleScore};
+use rocking::spectra::{characteristic_arch_oas, same_arch, ArchOas, ArchRecord, RuleScore};
 use serde::Deserialize;
 
 use crate::output::print_json;
@@ -113,6 +113,28 @@ fn one_arch(files: &[PathBuf], records: &[ArchRecord]) -> Result<(), String> {
     Ok(())
 }
 
+/// Errors when a test set on the fit set's arch holds a record of the fit set (it would be
+/// scored in sample), naming its file.
+fn out_of_sample(fit: &[ArchRecord], files: &[PathBuf], set: &[ArchRecord]) -> Result<(), String> {
+    let (Some(first), Some(test)) = (fit.first(), set.first()) else {
+        return Ok(());
+    };
+    if !same_arch(&first.oas, &test.oas) {
+        return Ok(());
+    }
+    for (f, r) in files.iter().zip(set) {
+        if fit.iter().any(|x| x.oas.record == r.oas.record) {
+            return Err(format!(
+                "{}: record `{}` is in the fit set, on the same arch: a test set must be out of \
+                 sample (other records or another arch)",
+                f.display(),
+                r.oas.record
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// `record → t_p` of the `--tp` files.
 fn read_tp(files: &[PathBuf]) -> Result<HashMap<String, f64>, String> {
     let mut out = HashMap::new();
@@ -162,6 +184,14 @@ fn by_folder(files: &[PathBuf]) -> Vec<(String, Vec<PathBuf>)> {
 /// `x` with three decimals, `-` when absent.
 fn num(x: Option<f64>) -> String {
     x.map_or("-".into(), |v| format!("{v:.3}"))
+}
+
+/// `score_columns`, or why a rule is not scored on a set.
+fn score_or_na(s: Option<&RuleScore>) -> String {
+    s.map_or_else(
+        || format!("{:>9} not scored: a fixed t1 of another arch", "n/a"),
+        score_columns,
+    )
 }
 
 /// `unsafe records / scored records`, `unsafe points / checked`, and the ratios.
@@ -348,6 +378,7 @@ pub fn run_rules(a: &ArchRulesArgs) -> Result<(), String> {
         .map(|(k, (dir, files))| {
             let set = read_set(&files, &tp)?;
             one_arch(&files, &set)?;
+            out_of_sample(&fit, &files, &set)?;
             Ok((name(k + 1, dir), set))
         })
         .collect::<Result<Vec<_>, String>>()?;
@@ -378,13 +409,34 @@ fn rules_table(r: &ArchRulesReport) -> String {
             "none".into()
         }
     );
+    for (set, arch) in r.sets.iter().zip(&r.arches) {
+        let Some(a) = arch else { continue };
+        s += &format!(
+            "set {set}: {} voussoirs, t/R = {}, embrace {:.0}°, λ = {:.6}, p = {:.4}/√R{}\n",
+            a.shape.voussoirs,
+            a.shape.thickness_ratio,
+            a.shape.embrace_angle.to_degrees(),
+            a.onset.lambda,
+            a.onset.p_at_1m,
+            if a.fit_arch {
+                " (the fit set's arch)"
+            } else {
+                " (another arch than the fit set's: a fixed t1 is not scored)"
+            }
+        );
+    }
     for row in &r.rules {
         s += &format!("({}) {}\n", row.rule.key, row.rule.statement);
     }
     s += &format!("{:<6} {:<28} {SCORE_HEADER}\n", "rule", "set");
     for row in &r.rules {
         for (set, score) in r.sets.iter().zip(&row.scores) {
-            s += &format!("{:<6} {:<28} {}\n", row.rule.key, set, score_columns(score));
+            s += &format!(
+                "{:<6} {:<28} {}\n",
+                row.rule.key,
+                set,
+                score_or_na(score.as_ref())
+            );
         }
     }
     s
@@ -419,7 +471,8 @@ fn rules_chart(r: &ArchRulesReport, sets: &[(&str, &[ArchRecord])]) -> Chart {
                 name: format!("({}) arch t1 = {c:.3} × single-block t1", row.rule.key),
                 points: vec![(0.0, 0.0), (xmax, c * xmax)],
                 style: Style::Dashed,
-                color: COLORS[[7, 4, 6][k % 3]],
+                // Black, then the last two colours: the sets take the first six.
+                color: [(0, 0, 0), COLORS[6], COLORS[7]][(k - 1) % 3],
             });
         }
     }
