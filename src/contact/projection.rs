@@ -57,7 +57,8 @@ impl Stepper {
             };
         }
         self.dq.iter_mut().for_each(|x| *x = 0.0);
-        self.projection.set(&self.contacts, &self.dq);
+        // The offsets are the gaps (below, every joint's): no free velocities.
+        self.projection.set_for_offsets(&self.contacts);
         for k in 0..n {
             let geo = &self.geometry[k];
             let gaps = [
