@@ -406,6 +406,10 @@ impl ContactProblem {
         let n = self.n;
         // Statuses of inactive ends are open; bilateral ends closed.
         for k in 0..n {
+            // The law classified once for the status tests.
+            let mu = self.joints[k].mu;
+            self.joints[k].slips = mu > 0.0 && mu.is_finite();
+            self.joints[k].sticks = mu == 0.0 || mu.is_infinite();
             let jc = self.joints[k];
             for c in 0..2 {
                 if !jc.active[c] {

@@ -390,8 +390,85 @@ impl ContactProblem {
 
     /// Sets up the problem: the joints' contacts and the free velocities `v_free` (`3n`).
     pub fn set(&mut self, joints: &[JointContacts], v_free: &[f64]) {
-        self.set_rows(joints, false);
-        self.set_blocks(Some(v_free));
+        let n = self.n;
+        self.blocks_set = true;
+        // Slices of length `n`: the indices below need no checks.
+        let joints = &joints[..n];
+        let inv_mass = &self.inv_mass[..n];
+        let (ups, lows) = (&mut self.up[..n], &mut self.low[..n]);
+        let (laws, weights) = (&mut self.joints[..n], &mut self.weights[..n]);
+        for k in 0..n {
+            let jc = &joints[k];
+            laws[k] = JointLaw {
+                active: jc.active,
+                bilateral: jc.bilateral,
+                mu: jc.mu,
+                // Classified by `solve`.
+                slips: false,
+                sticks: false,
+            };
+            let w = Self::tangent_weights(jc.active);
+            weights[k] = w;
+            let r = &jc.rows;
+            let t = |a: [f64; 3], b: [f64; 3]| {
+                [
+                    w[0] * a[0] + w[1] * b[0],
+                    w[0] * a[1] + w[1] * b[1],
+                    w[0] * a[2] + w[1] * b[2],
+                ]
+            };
+            ups[k] = [r[0].n_up, r[1].n_up, t(r[0].t_up, r[1].t_up)];
+            lows[k] = [r[0].n_low, r[1].n_low, t(r[0].t_low, r[1].t_low)];
+        }
+        let (ups, lows) = (&self.up[..n], &self.low[..n]);
+        let (wds, wos, bs) = (&mut self.wd[..n], &mut self.wo[..n], &mut self.b[..n]);
+        for k in 0..n {
+            let up = ups[k];
+            let mu = inv_mass[k];
+            let vu = *tri(v_free, k);
+            let mut w = [[0.0; 3]; 3];
+            let mut b = [0.0; 3];
+            let mut mup = [[0.0; 3]; 3];
+            for a in 0..3 {
+                mup[a] = [up[a][0] * mu[0], up[a][1] * mu[1], up[a][2] * mu[2]];
+                b[a] = dot3(&up[a], &vu);
+            }
+            for a in 0..3 {
+                for c in a..3 {
+                    w[a][c] = dot3(&mup[a], &up[c]);
+                }
+            }
+            if k > 0 {
+                let low = lows[k];
+                let ml = inv_mass[k - 1];
+                let vl = *tri(v_free, k - 1);
+                for a in 0..3 {
+                    b[a] += dot3(&low[a], &vl);
+                    let ml_a = [low[a][0] * ml[0], low[a][1] * ml[1], low[a][2] * ml[2]];
+                    for c in a..3 {
+                        w[a][c] += dot3(&ml_a, &low[c]);
+                    }
+                }
+            }
+            for a in 0..3 {
+                for c in 0..a {
+                    w[a][c] = w[c][a];
+                }
+            }
+            wds[k] = w;
+            bs[k] = b;
+            // Coupling with joint k+1 through drum k.
+            if k + 1 < n {
+                let ln = &lows[k + 1];
+                let mut o = [[0.0; 3]; 3];
+                for a in 0..3 {
+                    for c in 0..3 {
+                        o[a][c] = dot3(&mup[a], &ln[c]);
+                    }
+                }
+                wos[k] = o;
+            }
+        }
     }
 
     /// [`Self::set`] for a problem set up before on this workspace whose rows may have changed
@@ -399,26 +476,11 @@ impl ContactProblem {
     /// blocks of the joints whose rows (and, for a coupling block, the next joint's) have the
     /// same bits as at the last set are kept — the numbers the same operations would give again.
     pub(super) fn set_again(&mut self, joints: &[JointContacts], v_free: &[f64]) {
-        let reuse = self.blocks_set;
-        self.set_rows(joints, reuse);
-        if reuse {
-            self.set_changed_blocks(v_free);
-        } else {
-            self.set_blocks(Some(v_free));
+        if !self.blocks_set {
+            self.set(joints, v_free);
+            return;
         }
-    }
-
-    /// [`Self::set`] without free velocities, for a problem whose every joint's offsets are then
-    /// set by [`Self::set_offsets`] (a projection's gaps).
-    pub(super) fn set_for_offsets(&mut self, joints: &[JointContacts]) {
-        self.set_rows(joints, false);
-        self.set_blocks(None);
-    }
-
-    /// The joints' laws, tangent weights and rows; with `compare`, which rows changed (bits).
-    fn set_rows(&mut self, joints: &[JointContacts], compare: bool) {
         let n = self.n;
-        self.blocks_set = true;
         // Slices of length `n`: the indices below need no checks.
         let joints = &joints[..n];
         let (ups, lows) = (&mut self.up[..n], &mut self.low[..n]);
@@ -430,8 +492,8 @@ impl ContactProblem {
                 active: jc.active,
                 bilateral: jc.bilateral,
                 mu: jc.mu,
-                slips: jc.mu > 0.0 && jc.mu.is_finite(),
-                sticks: jc.mu == 0.0 || jc.mu.is_infinite(),
+                slips: false,
+                sticks: false,
             };
             let w = Self::tangent_weights(jc.active);
             weights[k] = w;
@@ -445,31 +507,11 @@ impl ContactProblem {
             };
             let up = [r[0].n_up, r[1].n_up, t(r[0].t_up, r[1].t_up)];
             let low = [r[0].n_low, r[1].n_low, t(r[0].t_low, r[1].t_low)];
-            if compare {
-                changed[k] = !(same_bits(&ups[k], &up) && same_bits(&lows[k], &low));
-            }
+            changed[k] = !(same_bits(&ups[k], &up) && same_bits(&lows[k], &low));
             ups[k] = up;
             lows[k] = low;
         }
-    }
-
-    /// Every joint's Delassus blocks, and its free rates from `v_free` (if given).
-    fn set_blocks(&mut self, v_free: Option<&[f64]>) {
-        let n = self.n;
-        let inv_mass = &self.inv_mass[..n];
-        let (ups, lows) = (&self.up[..n], &self.low[..n]);
-        let (wds, wos, bs) = (&mut self.wd[..n], &mut self.wo[..n], &mut self.b[..n]);
-        for k in 0..n {
-            let mup = scaled_rows(&ups[k], &inv_mass[k]);
-            if let Some(v_free) = v_free {
-                bs[k] = free_rates(ups, lows, v_free, k);
-            }
-            wds[k] = diagonal_block(ups, lows, inv_mass, &mup, k);
-            // Coupling with joint k+1 through drum k.
-            if k + 1 < n {
-                wos[k] = coupling_block(&mup, &lows[k + 1]);
-            }
-        }
+        self.set_changed_blocks(v_free);
     }
 
     /// The free rates of every joint from `v_free`, and the Delassus blocks of the joints whose

@@ -57,8 +57,7 @@ impl Stepper {
             };
         }
         self.dq.iter_mut().for_each(|x| *x = 0.0);
-        // The offsets are the gaps (below, every joint's): no free velocities.
-        self.projection.set_for_offsets(&self.contacts);
+        self.projection.set(&self.contacts, &self.dq);
         for k in 0..n {
             let geo = &self.geometry[k];
             let gaps = [
