@@ -7,21 +7,9 @@
 
 use super::blocks::{back, by_size, by_sizes, coupling, impulses, pivot};
 use super::friction::{
-    dot3, ContactProblem, JointStatus, Reduction, Slip, SolveFailure, SolveReport, MAX_ITERATIONS,
+    dot3, larger, ContactProblem, JointStatus, Reduction, Slip, SolveFailure, SolveReport,
+    MAX_ITERATIONS,
 };
-
-/// `x` if it is larger than `m`, else `m`: [`f64::max`] for the running maxima below, whose `m`
-/// is never NaN and whose values are never negative zeros (absolute values, positive violations,
-/// and the Delassus diagonal, only compared with zero), without its NaN handling (a NaN `x` is
-/// skipped by both).
-#[inline(always)]
-fn larger(m: f64, x: f64) -> f64 {
-    if x > m {
-        x
-    } else {
-        m
-    }
-}
 
 impl ContactProblem {
     /// The reduction of joint `k` for status `st`.
@@ -118,38 +106,67 @@ impl ContactProblem {
         for k in 0..n {
             let red = &red[k];
             let p = by_size!(impulses, red.size, (red, &z[k]));
-            finite &= p.iter().all(|x| x.is_finite());
+            // Not short-circuiting: the same answer as `p.iter().all(|x| x.is_finite())`.
+            finite &= p[0].is_finite() & p[1].is_finite() & p[2].is_finite();
             ps[k] = p;
         }
-        self.update_rates();
+        self.update_free_rates();
         finite
     }
 
     /// `u = W p + b`.
     pub(super) fn update_rates(&mut self) {
+        for k in 0..self.n {
+            self.u[k] = self.joint_rates(k);
+        }
+    }
+
+    /// `u = W p + b` of joint `k` (its row of blocks: the same operations in the same order
+    /// whichever of the loops below computes it).
+    #[inline(always)]
+    fn joint_rates(&self, k: usize) -> [f64; 3] {
         let n = self.n;
         let (wd, wo, b, ps) = (&self.wd[..n], &self.wo[..n], &self.b[..n], &self.p[..n]);
-        let us = &mut self.u[..n];
-        for k in 0..n {
-            let mut u = b[k];
-            let p = ps[k];
+        let mut u = b[k];
+        let p = ps[k];
+        for a in 0..3 {
+            u[a] += dot3(&wd[k][a], &p);
+        }
+        if k + 1 < n {
+            let pn = ps[k + 1];
             for a in 0..3 {
-                u[a] += dot3(&wd[k][a], &p);
+                u[a] += dot3(&wo[k][a], &pn);
             }
-            if k + 1 < n {
-                let pn = ps[k + 1];
-                for a in 0..3 {
-                    u[a] += dot3(&wo[k][a], &pn);
-                }
+        }
+        if k > 0 {
+            let pp = ps[k - 1];
+            let o = &wo[k - 1];
+            for a in 0..3 {
+                u[a] += o[0][a] * pp[0] + o[1][a] * pp[1] + o[2][a] * pp[2];
             }
-            if k > 0 {
-                let pp = ps[k - 1];
-                let o = &wo[k - 1];
-                for a in 0..3 {
-                    u[a] += o[0][a] * pp[0] + o[1][a] * pp[1] + o[2][a] * pp[2];
-                }
+        }
+        u
+    }
+
+    /// [`Self::update_rates`] on the joints whose reduction (the last linear solve's) leaves a
+    /// row free: the status test reads a joint's rates only on its free rows (an open end's
+    /// normal, a slipping joint's tangent), and a joint closed at both ends and sticking has
+    /// none. The others' rates are computed by [`Self::complete_rates`] once the statuses hold
+    /// (the same numbers: the impulses do not change in between).
+    fn update_free_rates(&mut self) {
+        for k in 0..self.n {
+            if self.red[k].size < 3 {
+                self.u[k] = self.joint_rates(k);
             }
-            us[k] = u;
+        }
+    }
+
+    /// The rates [`Self::update_free_rates`] left out.
+    fn complete_rates(&mut self) {
+        for k in 0..self.n {
+            if self.red[k].size == 3 {
+                self.u[k] = self.joint_rates(k);
+            }
         }
     }
 
@@ -162,6 +179,9 @@ impl ContactProblem {
     /// closures come back one joint per iteration); with `single`, only the lowest violated
     /// joint. On the 20-drum suite columns this takes a third fewer iterations and half the
     /// fallbacks of changing every violated joint at once.
+    // The holding tests are the negations of the change tests (`!(x < −tol)`, not `x ≥ −tol`):
+    // a NaN calls for no change in either.
+    #[allow(clippy::neg_cmp_op_on_partial_ord)]
     fn update_statuses(
         &mut self,
         statuses: &mut [JointStatus],
@@ -171,11 +191,49 @@ impl ContactProblem {
     ) -> Option<usize> {
         let (u_ref, p_ref) = (tol_u * 1e10, tol_p * 1e10);
         let mut worst = 0.0_f64;
-        for k in 0..self.n {
-            let jc = &self.joints[k];
+        let n = self.n;
+        // Slices of length `n`: the indices below need no checks.
+        let (joints, ps, us) = (&self.joints[..n], &self.p[..n], &self.u[..n]);
+        let (nexts, viols) = (&mut self.next[..n], &mut self.viol[..n]);
+        let statuses = &mut statuses[..n];
+        for k in 0..n {
+            let jc = &joints[k];
             let st = statuses[k];
-            let p = self.p[k];
-            let u = self.u[k];
+            let p = ps[k];
+            let u = us[k];
+            // First whether the joint's status holds (most joints, in most iterations): the
+            // tests below, without the sizes of the violations, which would leave `next == st`
+            // and no violation (and `worst` as it is: it is never below zero).
+            let end_holds = |c: usize| {
+                if !jc.active[c] {
+                    !st.closed[c]
+                } else if jc.bilateral[c] {
+                    st.closed[c]
+                } else if st.closed[c] {
+                    !(p[c] < -tol_p)
+                } else {
+                    !(u[c] < -tol_u)
+                }
+            };
+            if end_holds(0) && end_holds(1) {
+                let any_closed = (jc.active[0] && st.closed[0]) || (jc.active[1] && st.closed[1]);
+                let slip_holds = if any_closed && jc.slips {
+                    match st.slip {
+                        Slip::Stick => {
+                            let bound = jc.mu * (p[0] + p[1]).max(0.0);
+                            !(p[2].abs() > bound + tol_p)
+                        }
+                        slip => !(slip.sign() * u[2] < -tol_u),
+                    }
+                } else {
+                    true
+                };
+                if slip_holds && ((any_closed && !jc.sticks) || st.slip == Slip::Stick) {
+                    nexts[k] = st;
+                    viols[k] = 0.0;
+                    continue;
+                }
+            }
             let mut next = st;
             let mut viol = 0.0_f64;
             for c in 0..2 {
@@ -194,7 +252,7 @@ impl ContactProblem {
                 }
             }
             let any_closed = (jc.active[0] && st.closed[0]) || (jc.active[1] && st.closed[1]);
-            if any_closed && jc.mu > 0.0 && jc.mu.is_finite() {
+            if any_closed && jc.slips {
                 let bound = jc.mu * (p[0] + p[1]).max(0.0);
                 match st.slip {
                     Slip::Stick => {
@@ -229,7 +287,7 @@ impl ContactProblem {
                 }
             }
             let any_next = (jc.active[0] && next.closed[0]) || (jc.active[1] && next.closed[1]);
-            if !any_next || jc.mu == 0.0 || jc.mu.is_infinite() {
+            if !any_next || jc.sticks {
                 next.slip = Slip::Stick;
             }
             if next == st {
@@ -238,8 +296,8 @@ impl ContactProblem {
                 // A change with no measured violation (bookkeeping of inactive ends) is taken.
                 viol = larger(viol, f64::MIN_POSITIVE);
             }
-            self.next[k] = next;
-            self.viol[k] = viol;
+            nexts[k] = next;
+            viols[k] = viol;
             worst = larger(worst, viol);
         }
         if worst == 0.0 {
@@ -303,7 +361,10 @@ impl ContactProblem {
             }
             let tol_p = self.impulse_tolerance(p_floor);
             match self.update_statuses(statuses, tol_u, tol_p, false) {
-                None => return true,
+                None => {
+                    self.complete_rates();
+                    return true;
+                }
                 Some(k) => from = k,
             }
             let sig = Self::signature(statuses);
@@ -345,6 +406,10 @@ impl ContactProblem {
         let n = self.n;
         // Statuses of inactive ends are open; bilateral ends closed.
         for k in 0..n {
+            // The law classified once for the status tests.
+            let mu = self.joints[k].mu;
+            self.joints[k].slips = mu > 0.0 && mu.is_finite();
+            self.joints[k].sticks = mu == 0.0 || mu.is_infinite();
             let jc = self.joints[k];
             for c in 0..2 {
                 if !jc.active[c] {
@@ -353,7 +418,7 @@ impl ContactProblem {
                     statuses[k].closed[c] = true;
                 }
             }
-            if jc.mu == 0.0 || jc.mu.is_infinite() {
+            if jc.sticks {
                 statuses[k].slip = Slip::Stick;
             }
         }
@@ -390,7 +455,10 @@ impl ContactProblem {
             }
             let tol_p = self.impulse_tolerance(p_floor);
             match self.update_statuses(statuses, tol_u, tol_p, single) {
-                None => return Ok(report),
+                None => {
+                    self.complete_rates();
+                    return Ok(report);
+                }
                 Some(k) => from = k,
             }
             let sig = Self::signature(statuses);

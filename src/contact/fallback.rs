@@ -7,7 +7,7 @@
 //! 20 000 sweeps.
 
 use super::blocks::by_size;
-use super::friction::{ContactProblem, JointStatus, Slip, SolveFailure, SolveReport, B3};
+use super::friction::{larger, ContactProblem, JointStatus, Slip, SolveFailure, SolveReport, B3};
 
 /// A variable of the LCP.
 #[derive(Clone, Copy, Debug)]
@@ -233,8 +233,9 @@ impl ContactProblem {
             };
             self.p[k] = new;
             for a in 0..3 {
-                change = change.max((new[a] - old[a]).abs());
-                size = size.max(new[a].abs());
+                // Absolute values: `larger` is `max` here (see there).
+                change = larger(change, (new[a] - old[a]).abs());
+                size = larger(size, new[a].abs());
             }
         }
         (change, size)
@@ -295,7 +296,10 @@ impl ContactProblem {
             }
         }
         let friction = jc.mu > 0.0;
-        let scale_u = r.iter().fold(0.0_f64, |m, x| m.max(x.abs())).max(1e-300);
+        let scale_u = r
+            .iter()
+            .fold(0.0_f64, |m, x| larger(m, x.abs()))
+            .max(1e-300);
         if warm {
             let p = self.p[k];
             let pattern = [
@@ -412,7 +416,10 @@ impl ContactProblem {
                 u[i] += wl[i][j] * p[j];
             }
         }
-        let pscale = p.iter().fold(0.0_f64, |m, x| m.max(x.abs())).max(1e-300);
+        let pscale = p
+            .iter()
+            .fold(0.0_f64, |m, x| larger(m, x.abs()))
+            .max(1e-300);
         let mut viol = 0.0_f64;
         for c in 0..2 {
             if !jc.active[c] || jc.bilateral[c] {

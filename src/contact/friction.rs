@@ -50,6 +50,10 @@ pub(super) struct JointLaw {
     pub(super) active: [bool; 2],
     pub(super) bilateral: [bool; 2],
     pub(super) mu: f64,
+    /// `0 < μ < ∞`: the joint can slip (classified once per problem, for the status tests).
+    pub(super) slips: bool,
+    /// `μ = 0` or `μ = ∞`: the joint's tangential status is always stick.
+    pub(super) sticks: bool,
 }
 
 /// Slip status of a joint.
@@ -152,6 +156,10 @@ pub struct ContactProblem {
     pub(super) sweep_fallback: bool,
     /// The sweeps' impulses while the active set method is tried from them.
     pub(super) gs_saved: Vec<[f64; 3]>,
+    /// Whether the joints' rows changed in the last set (see [`ContactProblem::set_again`]).
+    pub(super) changed: Vec<bool>,
+    /// Whether the blocks were set up once (and `up`, `low`, `wd`, `wo` agree).
+    pub(super) blocks_set: bool,
 }
 
 /// Inverse of the leading `m × m` block (`m ≤ 3`) by the adjugate; `None` when the block is
@@ -223,9 +231,104 @@ pub(super) fn tri_mut(v: &mut [f64], k: usize) -> &mut [f64; 3] {
         .expect("three entries")
 }
 
+/// `x` if it is larger than `m`, else `m`: [`f64::max`] for the running maxima of the active
+/// set method and the Gauss–Seidel sweeps, whose `m` is never NaN and whose values are never
+/// negative zeros (absolute values, positive violations, and the Delassus diagonal, only compared
+/// with zero), without its NaN handling (a NaN `x` is skipped by both).
+#[inline(always)]
+pub(super) fn larger(m: f64, x: f64) -> f64 {
+    if x > m {
+        x
+    } else {
+        m
+    }
+}
+
+/// Whether two blocks have the same bits (not `==`: a negative zero is not a positive one).
+#[inline(always)]
+fn same_bits(a: &B3, b: &B3) -> bool {
+    let mut diff = 0u64;
+    for i in 0..3 {
+        for j in 0..3 {
+            diff |= a[i][j].to_bits() ^ b[i][j].to_bits();
+        }
+    }
+    diff == 0
+}
+
 #[inline]
 pub(super) fn dot3(a: &[f64; 3], b: &[f64; 3]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// A joint's rows for its upper drum times that drum's inverse masses, `M⁻¹ Hᵀ` row by row.
+#[inline(always)]
+fn scaled_rows(up: &B3, mu: &[f64; 3]) -> B3 {
+    let mut mup = [[0.0; 3]; 3];
+    for a in 0..3 {
+        mup[a] = [up[a][0] * mu[0], up[a][1] * mu[1], up[a][2] * mu[2]];
+    }
+    mup
+}
+
+/// Free relative velocities of joint `k`: its rows times `v_free`.
+#[inline(always)]
+fn free_rates(ups: &[B3], lows: &[B3], v_free: &[f64], k: usize) -> [f64; 3] {
+    let up = &ups[k];
+    let vu = *tri(v_free, k);
+    let mut b = [0.0; 3];
+    for a in 0..3 {
+        b[a] = dot3(&up[a], &vu);
+    }
+    if k > 0 {
+        let low = &lows[k];
+        let vl = *tri(v_free, k - 1);
+        for a in 0..3 {
+            b[a] += dot3(&low[a], &vl);
+        }
+    }
+    b
+}
+
+/// Diagonal Delassus block of joint `k` (`mup`: its [`scaled_rows`]).
+#[inline(always)]
+fn diagonal_block(ups: &[B3], lows: &[B3], inv_mass: &[[f64; 3]], mup: &B3, k: usize) -> B3 {
+    let up = &ups[k];
+    let mut w = [[0.0; 3]; 3];
+    for a in 0..3 {
+        for c in a..3 {
+            w[a][c] = dot3(&mup[a], &up[c]);
+        }
+    }
+    if k > 0 {
+        let low = &lows[k];
+        let ml = inv_mass[k - 1];
+        for a in 0..3 {
+            let ml_a = [low[a][0] * ml[0], low[a][1] * ml[1], low[a][2] * ml[2]];
+            for c in a..3 {
+                w[a][c] += dot3(&ml_a, &low[c]);
+            }
+        }
+    }
+    for a in 0..3 {
+        for c in 0..a {
+            w[a][c] = w[c][a];
+        }
+    }
+    w
+}
+
+/// Off-diagonal block: joint `k`'s rows (`mup`: its [`scaled_rows`]) against joint `k + 1`'s
+/// rows for drum `k` (`ln`).
+#[inline(always)]
+fn coupling_block(mup: &B3, ln: &B3) -> B3 {
+    let mut o = [[0.0; 3]; 3];
+    for a in 0..3 {
+        for c in 0..3 {
+            o[a][c] = dot3(&mup[a], &ln[c]);
+        }
+    }
+    o
 }
 
 impl ContactProblem {
@@ -260,6 +363,8 @@ impl ContactProblem {
             lemke: Lemke::default(),
             sweep_fallback: false,
             gs_saved: Vec::with_capacity(n),
+            changed: vec![true; n],
+            blocks_set: false,
         }
     }
 
@@ -286,6 +391,7 @@ impl ContactProblem {
     /// Sets up the problem: the joints' contacts and the free velocities `v_free` (`3n`).
     pub fn set(&mut self, joints: &[JointContacts], v_free: &[f64]) {
         let n = self.n;
+        self.blocks_set = true;
         // Slices of length `n`: the indices below need no checks.
         let joints = &joints[..n];
         let inv_mass = &self.inv_mass[..n];
@@ -297,6 +403,9 @@ impl ContactProblem {
                 active: jc.active,
                 bilateral: jc.bilateral,
                 mu: jc.mu,
+                // Classified by `solve`.
+                slips: false,
+                sticks: false,
             };
             let w = Self::tangent_weights(jc.active);
             weights[k] = w;
@@ -358,6 +467,72 @@ impl ContactProblem {
                     }
                 }
                 wos[k] = o;
+            }
+        }
+    }
+
+    /// [`Self::set`] for a problem set up before on this workspace whose rows may have changed
+    /// only in part (the stages of an impact, where only the bumps' rows move): the Delassus
+    /// blocks of the joints whose rows (and, for a coupling block, the next joint's) have the
+    /// same bits as at the last set are kept — the numbers the same operations would give again.
+    pub(super) fn set_again(&mut self, joints: &[JointContacts], v_free: &[f64]) {
+        if !self.blocks_set {
+            self.set(joints, v_free);
+            return;
+        }
+        let n = self.n;
+        // Slices of length `n`: the indices below need no checks.
+        let joints = &joints[..n];
+        let (ups, lows) = (&mut self.up[..n], &mut self.low[..n]);
+        let (laws, weights) = (&mut self.joints[..n], &mut self.weights[..n]);
+        let changed = &mut self.changed[..n];
+        for k in 0..n {
+            let jc = &joints[k];
+            laws[k] = JointLaw {
+                active: jc.active,
+                bilateral: jc.bilateral,
+                mu: jc.mu,
+                slips: false,
+                sticks: false,
+            };
+            let w = Self::tangent_weights(jc.active);
+            weights[k] = w;
+            let r = &jc.rows;
+            let t = |a: [f64; 3], b: [f64; 3]| {
+                [
+                    w[0] * a[0] + w[1] * b[0],
+                    w[0] * a[1] + w[1] * b[1],
+                    w[0] * a[2] + w[1] * b[2],
+                ]
+            };
+            let up = [r[0].n_up, r[1].n_up, t(r[0].t_up, r[1].t_up)];
+            let low = [r[0].n_low, r[1].n_low, t(r[0].t_low, r[1].t_low)];
+            changed[k] = !(same_bits(&ups[k], &up) && same_bits(&lows[k], &low));
+            ups[k] = up;
+            lows[k] = low;
+        }
+        self.set_changed_blocks(v_free);
+    }
+
+    /// The free rates of every joint from `v_free`, and the Delassus blocks of the joints whose
+    /// rows changed ([`Self::set_again`]).
+    fn set_changed_blocks(&mut self, v_free: &[f64]) {
+        let n = self.n;
+        let inv_mass = &self.inv_mass[..n];
+        let (ups, lows, changed) = (&self.up[..n], &self.low[..n], &self.changed[..n]);
+        let (wds, wos, bs) = (&mut self.wd[..n], &mut self.wo[..n], &mut self.b[..n]);
+        for k in 0..n {
+            bs[k] = free_rates(ups, lows, v_free, k);
+            let coupling = k + 1 < n && (changed[k] || changed[k + 1]);
+            if !changed[k] && !coupling {
+                continue;
+            }
+            let mup = scaled_rows(&ups[k], &inv_mass[k]);
+            if changed[k] {
+                wds[k] = diagonal_block(ups, lows, inv_mass, &mup, k);
+            }
+            if coupling {
+                wos[k] = coupling_block(&mup, &lows[k + 1]);
             }
         }
     }

@@ -222,6 +222,7 @@ pub(super) struct Saved {
     pub(super) counters: StepCounters,
     pub(super) joint_impulses: Vec<[f64; 2]>,
     pub(super) carried: Vec<[bool; 2]>,
+    pub(super) geometry: Vec<JointGeometry>,
 }
 
 impl Stepper {
