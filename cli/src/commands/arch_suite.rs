@@ -442,6 +442,19 @@ fn rules_table(r: &ArchRulesReport) -> String {
     s
 }
 
+/// The sets' colours in the rules chart: the palette's first six (its last two draw the rules),
+/// then matplotlib's pink and olive, so that eight sets stay apart.
+const SET_COLORS: [crate::plot::Rgb; 8] = [
+    COLORS[0],
+    COLORS[1],
+    COLORS[2],
+    COLORS[3],
+    COLORS[4],
+    COLORS[5],
+    (0xe3, 0x77, 0xc2),
+    (0xbc, 0xbd, 0x22),
+];
+
 /// Each record's arch t₁ against its single-block t₁, one colour a set, with the rules
 /// `t₁,arch = c t₁,block` (c = 1 and the fitted ones).
 fn rules_chart(r: &ArchRulesReport, sets: &[(&str, &[ArchRecord])]) -> Chart {
@@ -455,7 +468,7 @@ fn rules_chart(r: &ArchRulesReport, sets: &[(&str, &[ArchRecord])]) -> Chart {
                 .filter_map(|x| Some((x.block_t1?, x.oas.t1()?)))
                 .collect(),
             style: Style::Points,
-            color: COLORS[k % 6],
+            color: SET_COLORS[k % SET_COLORS.len()],
         })
         .collect();
     let xmax = series
