@@ -11,14 +11,15 @@ $R arch suite docs/data/arch-t020-nearfield/oas-RSN*.json --name "near field (56
 $R arch suite docs/data/arch20-nearfield/oas-RSN*.json --name "near field (56)" --svg docs/figures/arch-suite-nearfield-N20 > docs/data/arch-rules/suite-nearfield-N20.txt
 $R arch suite docs/data/arch-t012/oas-RSN*.json --name "far field (44), t/R 0.12" --svg docs/figures/arch-suite-farfield-t012 > docs/data/arch-rules/suite-farfield-N8-t012.txt
 $R arch suite docs/data/arch-t012-nearfield/oas-RSN*.json --name "near field (56), t/R 0.12" --svg docs/figures/arch-suite-nearfield-t012 > docs/data/arch-rules/suite-nearfield-N8-t012.txt
+$R arch suite docs/data/arch-t011/oas-RSN*.json --name "far field (44), t/R 0.11" --svg docs/figures/arch-suite-farfield-t011 > docs/data/arch-rules/suite-farfield-N8-t011.txt
 # The fit set: far field, 8 voussoirs, t/R 0.15. The test sets, out of sample: other records
-# (near field) or other arches (20 voussoirs; t/R 0.20 and 0.12), where a fixed t1 is not scored.
+# (near field) or other arches (20 voussoirs; t/R 0.20, 0.12 and 0.11), where a fixed t1 is not scored.
 args=(--fit docs/data/arch/oas-RSN*.json
   --test docs/data/arch-nearfield/oas-RSN*.json docs/data/arch20/oas-RSN*.json
          docs/data/arch20-nearfield/oas-RSN*.json docs/data/arch-t020/oas-RSN*.json
          docs/data/arch-t020-nearfield/oas-RSN*.json docs/data/arch-t012/oas-RSN*.json
-         docs/data/arch-t012-nearfield/oas-RSN*.json
+         docs/data/arch-t012-nearfield/oas-RSN*.json docs/data/arch-t011/oas-RSN*.json
   --tp docs/data/t1-farfield.json --tp docs/data/t1-nearfield.json
-  --names "far field 8,near field 8,far field 20,near field 20,far field 8 t/R 0.20,near field 8 t/R 0.20,far field 8 t/R 0.12,near field 8 t/R 0.12")
+  --names "far field 8,near field 8,far field 20,near field 20,far field 8 t/R 0.20,near field 8 t/R 0.20,far field 8 t/R 0.12,near field 8 t/R 0.12,far field 8 t/R 0.11")
 $R arch rules "${args[@]}" --svg docs/figures/arch-rules.svg > docs/data/arch-rules/rules.txt
 $R arch rules "${args[@]}" --json > docs/data/arch-rules/rules.json

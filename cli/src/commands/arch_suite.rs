@@ -443,8 +443,8 @@ fn rules_table(r: &ArchRulesReport) -> String {
 }
 
 /// The sets' colours in the rules chart: the palette's first six (its last two draw the rules),
-/// then matplotlib's pink and olive, so that eight sets stay apart.
-const SET_COLORS: [crate::plot::Rgb; 8] = [
+/// then matplotlib's pink and olive and an indigo, so that nine sets stay apart.
+const SET_COLORS: [crate::plot::Rgb; 9] = [
     COLORS[0],
     COLORS[1],
     COLORS[2],
@@ -453,6 +453,7 @@ const SET_COLORS: [crate::plot::Rgb; 8] = [
     COLORS[5],
     (0xe3, 0x77, 0xc2),
     (0xbc, 0xbd, 0x22),
+    (0x33, 0x33, 0x99),
 ];
 
 /// Each record's arch t₁ against its single-block t₁, one colour a set, with the rules
