@@ -67,6 +67,58 @@ fn t1_band_adds_the_range_and_the_conservative_t1() {
     }
 }
 
+/// `rocking t1 --converge-step`: the steps tried halve from the given factor, the row is the
+/// last step's (its `dt_factor` and `t1`, equal to a plain run at that factor), and a bad
+/// tolerance is an error that names the option.
+#[test]
+fn t1_converge_step_reports_the_steps_and_the_finest_row() {
+    let mut args = vec![
+        "t1",
+        "examples/records/synthetic.AT2",
+        "--json",
+        "--dt-factor",
+        "2",
+        "--converge-step",
+        "0.1",
+    ];
+    args.extend(SMALL);
+    let (ok, out, err) = rocking(&args);
+    assert!(ok, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let row = &v.as_array().unwrap()[0];
+    let steps = row["t1_steps"].as_array().unwrap();
+    assert!(steps.len() >= 2, "{row}");
+    for (k, s) in steps.iter().enumerate() {
+        assert_eq!(s[0].as_f64(), Some(2.0 * 0.5f64.powi(k as i32)), "{row}");
+    }
+    let last = steps.last().unwrap();
+    assert_eq!(row["dt_factor"].as_f64(), last[0].as_f64(), "{row}");
+    assert_eq!(row["t1"].as_f64(), last[1].as_f64(), "{row}");
+    assert!(row["step_converged"].is_boolean(), "{row}");
+    let factor = format!("{}", last[0].as_f64().unwrap());
+    let mut plain = vec![
+        "t1",
+        "examples/records/synthetic.AT2",
+        "--json",
+        "--dt-factor",
+        &factor,
+    ];
+    plain.extend(SMALL);
+    let (ok, out, err) = rocking(&plain);
+    assert!(ok, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v[0]["t1"], row["t1"]);
+    assert!(!out.contains("t1_steps"), "{out}");
+    let mut bad = vec![
+        "t1",
+        "examples/records/synthetic.AT2",
+        "--converge-step=-0.1",
+    ];
+    bad.extend(SMALL);
+    let (ok, _, err) = rocking(&bad);
+    assert!(!ok && err.contains("step_tolerance"), "{err}");
+}
+
 #[test]
 fn design_width_reproduces_the_pier_example() {
     // Thesis 5.3.4: a_g = 0.14 g, t_1 = 0.7 s, H = 12 m: B_a = 1.299 m, B_b = 2.122 m (Eq. 23

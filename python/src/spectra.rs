@@ -220,6 +220,8 @@ pub fn _t1<'py>(
             t1_range: None,
             t1_conservative: None,
             band: None,
+            t1_steps: None,
+            step_converged: None,
         });
     }
     to_python(py, &rows)

@@ -48,6 +48,7 @@ mod replacement_sine;
 #[cfg(feature = "serde")]
 pub mod report;
 pub mod statistics;
+mod step_convergence;
 pub mod suite;
 mod sweep;
 mod time_step;
@@ -71,6 +72,7 @@ pub use oas::{
 pub use overturning_curve::{overturning_curve, pulse_overturns, Oc, PulseShape};
 pub use point::{point_run, PointRun};
 pub use replacement_sine::{replacement_sine, ReplacementSine, SINE_FULLNESS};
+pub use step_convergence::{t1_agree, t1_step_converged, StepConvergence};
 pub use sweep::{column_of_size, Progress, SweepOptions};
 pub use time_step::TimeStep;
 pub use transformed::{ConservativeCheck, InclinedFit, OasSummary};

@@ -290,6 +290,13 @@ pub struct T1Row {
     /// With a band: t₁ of each perturbation, by name.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub band: Option<std::collections::BTreeMap<String, Option<f64>>>,
+    /// Converged in the step (`rocking t1 --converge-step`): `[dt factor, t₁]` of each step
+    /// tried, in order (the row's spectrum, and its `dt_factor`, are the last step's).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub t1_steps: Option<Vec<(f64, Option<f64>)>>,
+    /// Converged in the step: whether the last two steps' t₁ agree within the tolerance.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub step_converged: Option<bool>,
 }
 
 impl T1Row {
@@ -303,6 +310,17 @@ impl T1Row {
                 .map(|(p, t)| (p.name().to_string(), *t))
                 .collect(),
         );
+    }
+
+    /// Writes the step history into the row; `first_factor` is the dt factor of the first step.
+    pub fn set_steps(&mut self, c: &super::StepConvergence, first_factor: f64) {
+        self.t1_steps = Some(
+            c.steps
+                .iter()
+                .map(|(f, t)| (first_factor * f, *t))
+                .collect(),
+        );
+        self.step_converged = Some(c.converged);
     }
 }
 

@@ -253,6 +253,54 @@ fn t1_converged_in_dt() {
     assert!(hi / lo <= 1.10, "{t1:?}");
 }
 
+/// The step-halving procedure stops at the first pair of successive steps whose `t_1` agree and
+/// returns the finer spectrum, the same as an OAS computed at that step directly; with a zero
+/// tolerance and steps that disagree it goes on to the last halving and says so.
+#[test]
+fn t1_step_converged_stops_where_two_steps_agree() {
+    let record = bundled_record();
+    let grid = small_grid();
+    let direct = |f: f64| {
+        let mut o = grid.clone();
+        o.sweep.time_step = o.sweep.time_step.scaled(f);
+        oas(&record, &o, None).unwrap()
+    };
+    let (finest, c) = t1_step_converged(&record, &grid, 0.10, 4, None).unwrap();
+    assert!(c.converged, "{c:?}");
+    let n = c.steps.len();
+    assert!(n >= 2);
+    for (k, (f, t1)) in c.steps.iter().enumerate() {
+        assert_eq!(*f, 0.5f64.powi(k as i32));
+        assert_eq!(*t1, direct(*f).t1(), "factor {f}");
+    }
+    // It stopped at the first agreeing pair.
+    for w in c.steps[..n - 1].windows(2) {
+        assert!(!t1_agree(w[0].1, w[1].1, 0.10), "{c:?}");
+    }
+    assert!(t1_agree(c.steps[n - 2].1, c.steps[n - 1].1, 0.10));
+    assert_eq!(finest, direct(c.factor()));
+    // Steps that never agree exactly: to the last halving, not converged (unless two agree to
+    // the bit, which the history then shows).
+    let (_, strict) = t1_step_converged(&record, &grid, 0.0, 2, None).unwrap();
+    let exact = strict.steps.windows(2).any(|w| w[0].1 == w[1].1);
+    assert_eq!(strict.converged, exact, "{strict:?}");
+    if !exact {
+        assert_eq!(strict.steps.len(), 3);
+    }
+    assert!(t1_step_converged(&record, &grid, f64::NAN, 2, None).is_err());
+    assert!(t1_step_converged(&record, &grid, 0.1, 0, None).is_err());
+}
+
+#[test]
+fn t1_agree_counts_no_overturning_as_agreement_only_with_itself() {
+    assert!(t1_agree(None, None, 0.0));
+    assert!(!t1_agree(Some(1.0), None, 10.0));
+    assert!(!t1_agree(None, Some(1.0), 10.0));
+    assert!(t1_agree(Some(1.0), Some(1.1), 0.1000001));
+    assert!(!t1_agree(Some(1.0), Some(1.1), 0.09));
+    assert!(t1_agree(Some(1.1), Some(1.0), 0.1000001));
+}
+
 /// Verdicts of every point of a grid with and without
 /// [`crate::driver::StoppingOptions::stop_when_safe`].
 fn verdicts_with_and_without_energy_bound(record: &Record, grid: &OasOptions) {

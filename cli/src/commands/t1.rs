@@ -53,6 +53,15 @@ pub struct T1Args {
     /// Five OAS per record.
     #[arg(long, conflicts_with = "merge")]
     pub band: bool,
+    /// t₁ converged in the time step: the OAS again at half the step, and again, until two
+    /// successive steps give t₁ within TOL (max/min − 1; e.g. 0.1) or after
+    /// --converge-halvings halvings; the row is the finest step's, with `t1_steps`
+    /// ([dt factor, t₁] of each step) and `step_converged`.
+    #[arg(long, value_name = "TOL", conflicts_with_all = ["merge", "band"])]
+    pub converge_step: Option<f64>,
+    /// With --converge-step: the most halvings of the step.
+    #[arg(long, default_value_t = 4, requires = "converge_step")]
+    pub converge_halvings: usize,
 }
 
 /// One record's row of `t1 --json`: the library's row and, with `--explain`, the run of the
@@ -124,6 +133,9 @@ pub fn run(a: &T1Args) -> Result<(), String> {
         let files = a.shard.keep(&a.records);
         let members = if a.band {
             spectra::Perturbation::ALL.len()
+        } else if a.converge_step.is_some() {
+            // At least two steps; the bar's length is a lower bound when more are needed.
+            2
         } else {
             1
         };
@@ -134,20 +146,34 @@ pub fn run(a: &T1Args) -> Result<(), String> {
             let record = super::sweep::read(&f)?;
             let t0 = Instant::now();
             let tick = || bar.inc(1);
-            let (r, band) = if a.band {
+            let (mut band, mut steps) = (None, None);
+            let r = if a.band {
                 let (r, b) =
                     spectra::t1_band(&record, &o, Some(&tick)).map_err(|e| e.to_string())?;
-                (r, Some(b))
+                band = Some(b);
+                r
+            } else if let Some(tol) = a.converge_step {
+                let (r, c) =
+                    spectra::t1_step_converged(&record, &o, tol, a.converge_halvings, Some(&tick))
+                        .map_err(|e| e.to_string())?;
+                steps = Some(c);
+                r
             } else {
-                (
-                    spectra::oas(&record, &o, Some(&tick)).map_err(|e| e.to_string())?,
-                    None,
-                )
+                spectra::oas(&record, &o, Some(&tick)).map_err(|e| e.to_string())?
+            };
+            // The options of the spectrum in the row (the finest step's with --converge-step).
+            let row_factor = steps.as_ref().map_or(1.0, |c| c.factor());
+            let o_row = if row_factor == 1.0 {
+                o.clone()
+            } else {
+                let mut x = o.clone();
+                x.sweep.time_step = x.sweep.time_step.scaled(row_factor);
+                x
             };
             let t_p = spectra::replacement_sine(&record).map(|s| s.t_p);
             let summary = Summary::of(&r, t0.elapsed().as_secs_f64());
             let governing = if a.explain {
-                governing(&record, &summary, &o)?
+                governing(&record, &summary, &o_row)?
             } else {
                 None
             };
@@ -157,7 +183,7 @@ pub fn run(a: &T1Args) -> Result<(), String> {
                     file: Some(f.display().to_string()),
                     slenderness: o.slenderness,
                     blocks: o.n_blocks,
-                    dt_factor: a.simulation.dt_factor,
+                    dt_factor: a.simulation.dt_factor * row_factor,
                     search: o.search,
                     t_p,
                     procedure: (a.grid.procedure != Procedure::Converged)
@@ -165,11 +191,16 @@ pub fn run(a: &T1Args) -> Result<(), String> {
                     t1_range: None,
                     t1_conservative: None,
                     band: None,
+                    t1_steps: None,
+                    step_converged: None,
                 },
                 governing,
             };
             if let Some(b) = &band {
                 row.set_band(b);
+            }
+            if let Some(c) = &steps {
+                row.set_steps(c, a.simulation.dt_factor);
             }
             rows.push(row);
         }
@@ -234,6 +265,17 @@ pub fn run(a: &T1Args) -> Result<(), String> {
             );
             if let (Some([lo, hi]), Some(c)) = (r.t1_range, r.t1_conservative) {
                 println!("    t1 band: {lo:.3}-{hi:.3} s, conservative {c:.3} s");
+            }
+            if let (Some(steps), Some(ok)) = (&r.t1_steps, r.step_converged) {
+                let list: Vec<String> = steps
+                    .iter()
+                    .map(|(f, t)| match t {
+                        Some(t) => format!("x{f}: {t:.4}"),
+                        None => format!("x{f}: none"),
+                    })
+                    .collect();
+                let verdict = if ok { "converged" } else { "not converged" };
+                println!("    t1 by step: {} ({verdict})", list.join(", "));
             }
             if let Some(g) = &r.governing {
                 println!(
