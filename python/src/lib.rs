@@ -56,6 +56,8 @@ fn _rocking(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(spectra::_t1, m)?)?;
     m.add_function(wrap_pyfunction!(spectra::_oc, m)?)?;
     m.add_function(wrap_pyfunction!(spectra::_simplified_oas, m)?)?;
+    m.add_function(wrap_pyfunction!(spectra::_tp, m)?)?;
+    m.add_function(wrap_pyfunction!(spectra::_suite, m)?)?;
     m.add_function(wrap_pyfunction!(design::_design_width, m)?)?;
     m.add_function(wrap_pyfunction!(design::_design_check, m)?)?;
     Ok(())
