@@ -6,7 +6,8 @@ called. Each draws into ``ax`` (a new figure's axes by default) and returns the 
   simulate --plot``);
 - :func:`oas`: an overturning acceleration spectrum against ``p`` (Fig. 36), ``f`` (Fig. 37) or
   the size, with the simplified spectra (as ``rocking oas --svg``);
-- :func:`oc`: an overturning curve (Fig. 33a, as ``rocking oc --svg``).
+- :func:`oc`: an overturning curve (Fig. 33a, as ``rocking oc --svg``);
+- :func:`arch_oas`, :func:`arch_oc`: the spectra of an arch (as ``rocking arch oas|oc --svg``).
 """
 import numpy as np
 
@@ -139,5 +140,53 @@ def oc(result, ax=None):
     ax.set_xlabel("p t_p")
     ax.set_ylabel("a_p / a_p,min")
     ax.set_title(f"Overturning curve, {result.shape}, {result.blocks} block{'s' if result.blocks != 1 else ''}")
+    ax.legend(fontsize="small")
+    return ax
+
+
+def arch_oas(result, against="p", ax=None, fits=True):
+    """The boundary of a :class:`rocking.ArchOas` (the largest radius that collapses at each
+    level ``a_p / (λ g)``) against ``p`` of the onset mechanism (1/s) or ``f = p a_p / (λ g)``
+    (1/s); with ``fits``, Eq. 21 with ``i_cr = 1`` for the arch's own ``t_1`` and for the checked
+    one (against ``f``: the lines ``f = 1/t_1``), as ``rocking arch oas --svg``."""
+    if against not in ("p", "f"):
+        raise ValueError(f"against = {against!r}: expected 'p' or 'f'")
+    ax = _axes(ax)
+    m = result.unsafe
+    x = {"p": result.p, "f": result.f}[against][m]
+    ax.plot(x, result.levels[m], "o", markersize=3, label="largest radius that collapses")
+    lmax = max(float(result.levels.max(initial=1.0)), 1.0)
+    if fits:
+        checked = None if result.check is None else result.check["t1"]
+        p = np.linspace(0.0, np.nanmax(x, initial=0.1) * 1.2, 401)[1:]
+        for t1, what in ((result.t1, "the arch's own"), (checked, "single-block")):
+            if t1 is None:
+                continue
+            label = f"Eq. 21 (i_cr = 1), {what} t1 = {t1:.3f} s"
+            if against == "f":
+                ax.plot([1.0 / t1, 1.0 / t1], [1.0, lmax], "--", label=label)
+            else:
+                eq21, _ = _rocking._simplified_oas(p, t1, 1.0)
+                ax.plot(p, eq21, "--", label=label)
+    ax.set_xlabel({"p": "p of the onset mechanism [1/s]", "f": "f = p a_p / (λ g) [1/s]"}[against])
+    ax.set_ylabel("a_p / (λ g)")
+    ax.set_ylim(0.0, lmax)
+    ax.set_title(f"Arch OAS, t/R = {result.thickness_ratio}, {result.voussoirs} voussoirs, {result.record}")
+    ax.legend(fontsize="small")
+    return ax
+
+
+def arch_oc(result, ax=None):
+    """The points of a :class:`rocking.ArchOc` that collapse and its envelope (the lowest level
+    that collapses at each ``p t_p``), against ``p t_p`` on a log axis."""
+    ax = _axes(ax)
+    rows, cols = np.nonzero(result.collapses)
+    ax.plot(result.p_tp[rows], result.levels[cols], "o", markersize=3, label="collapses")
+    ax.plot(result.p_tp, result.envelope, "-", label="envelope")
+    ax.set_xscale("log")
+    ax.set_xlabel("p t_p (p of the onset mechanism)")
+    ax.set_ylabel("a_p / (λ g)")
+    ax.set_title(f"Arch OC, {result.pulse}, R = {result.radius} m, t/R = {result.thickness_ratio}, "
+                 f"{result.voussoirs} voussoirs")
     ax.legend(fontsize="small")
     return ax

@@ -230,7 +230,7 @@ pub fn _t1<'py>(
 }
 
 /// The pulse shapes of `rocking oc --shape` (hyphens or underscores).
-fn shape_of(name: &str) -> PyResult<PulseShape> {
+pub(crate) fn shape_of(name: &str) -> PyResult<PulseShape> {
     Ok(match name.replace('_', "-").as_str() {
         "half-sine" => PulseShape::half_sine(),
         "full-sine" => PulseShape::full_sine(),
