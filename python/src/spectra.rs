@@ -69,10 +69,7 @@ impl Simulation {
 }
 
 /// A count (`int`, ≥ 1) or explicit values (an array-like).
-fn count_or_values(
-    obj: &Bound<'_, PyAny>,
-    name: &str,
-) -> PyResult<Result<usize, Vec<f64>>> {
+fn count_or_values(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<Result<usize, Vec<f64>>> {
     if obj.is_instance_of::<PyInt>() {
         let n: i64 = obj.extract()?;
         return usize::try_from(n)
