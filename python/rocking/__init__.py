@@ -53,7 +53,7 @@ from ._design import design_check, design_width
 from ._errors import error as _error
 from ._simulate import ContactSimulation, LoopSimulation, Simulation, simulate
 from ._spectra import Oas, Oc, Suite, oas, oc, suite, t1, tp
-from ._arch import ArchOas, ArchOc, arch_oas, arch_oc, arch_suite
+from ._arch import ArchOas, ArchOc, ArchSuite, arch_oas, arch_oc, arch_suite
 
 # Defaults, so that a RockingError raised from Python code has every attribute too.
 RockingError.code = None
@@ -74,6 +74,7 @@ __all__ = [
     "GRAVITY",
     "ArchOas",
     "ArchOc",
+    "ArchSuite",
     "Oas",
     "Oc",
     "Pulse",

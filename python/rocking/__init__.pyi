@@ -348,12 +348,27 @@ def arch_oc(
 ) -> ArchOc:
     """The overturning curve of an arch under a pulse, as ``rocking arch oc --json``."""
 
+class ArchSuite:
+    """The suite procedure on arch OAS, as ``rocking arch suite --json``."""
+
+    name: str
+    shape: Dict[str, Any]
+    onset: Dict[str, Any]
+    records: List[Dict[str, Any]]
+    characteristic: List[Dict[str, Any]]
+    """Per fractile: ``fractile``, ``design_t1``, ``f_min``, ``level_at_f_min``,
+    ``size_at_f_min``, ``record_t1_fractile``, ``oas`` (an :class:`ArchOas`), ``check``."""
+    block_rule: Dict[str, Any]
+    @property
+    def design_t1(self) -> Dict[float, Optional[float]]: ...
+    def to_dict(self) -> Dict[str, Any]: ...
+
 def arch_suite(
     spectra: Sequence[Union[ArchOas, Mapping[str, Any]]],
     *,
     name: str = "arch suite",
     fractiles: Union[float, Sequence[float]] = (0.5, 0.84),
-) -> Dict[str, Any]:
+) -> ArchSuite:
     """The suite procedure on arch OAS, as ``rocking arch suite --json``."""
 
 def design_width(

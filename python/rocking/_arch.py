@@ -190,6 +190,40 @@ def arch_oc(shape="half-sine", *, thickness_ratio=0.15, embrace=180.0, voussoirs
 arch_oc.__doc__ = arch_oc.__doc__.replace("{family}", _FAMILY_DOC.strip())
 
 
+class ArchSuite:
+    """The suite procedure on arch OAS, as ``rocking arch suite --json``: ``records`` one dict per
+    record (``record``, its arch ``t1``, ``f_min``, ``level_at_f_min``, ``size_at_f_min``,
+    ``block_t1`` — the single-block ``t_1`` its OAS was checked with, or None), by name;
+    ``characteristic`` one dict per fractile (``fractile``, ``design_t1`` — ``1/f_min`` of the
+    characteristic arch OAS, ``f_min``, ``level_at_f_min``, ``size_at_f_min``,
+    ``record_t1_fractile``, ``oas`` — the characteristic arch OAS as an :class:`ArchOas`,
+    ``check`` — the design ``t_1`` scored against every record: points and records predicted safe
+    that collapse, ratios); ``block_rule``: each record's single-block ``t_1`` scored against its
+    own arch OAS; ``name``, ``shape``, ``onset``. :meth:`to_dict` is the CLI's JSON."""
+
+    def __init__(self, raw):
+        self._raw = raw
+        self.name = raw["name"]
+        self.shape = raw["shape"]
+        self.onset = raw["onset"]
+        self.records = raw["records"]
+        self.characteristic = [dict(c, oas=ArchOas(c["oas"])) for c in raw["characteristic"]]
+        self.block_rule = raw["block_rule"]
+
+    @property
+    def design_t1(self):
+        """``{fractile: design t_1 (s) or None}``."""
+        return {c["fractile"]: c["design_t1"] for c in self.characteristic}
+
+    def to_dict(self):
+        """``rocking arch suite --json`` (a new dict)."""
+        return copy.deepcopy(self._raw)
+
+    def __repr__(self):
+        t1 = ", ".join(f"{q}: {'-' if t is None else f'{t:.4f} s'}" for q, t in self.design_t1.items())
+        return f"ArchSuite({self.name!r}: {len(self.records)} records, design t1 {{{t1}}})"
+
+
 def arch_suite(spectra, *, name="arch suite", fractiles=(0.5, 0.84)):
     """The suite procedure on arch OAS (thesis 5.3.1 on arches), as ``rocking arch suite
     --json``: the characteristic arch OAS at each fractile, its design ``t_1 = 1/f_min``, that
@@ -197,12 +231,12 @@ def arch_suite(spectra, *, name="arch suite", fractiles=(0.5, 0.84)):
     :func:`arch_oas` was checked with) checked against its own arch OAS.
 
     ``spectra``: the records' :class:`ArchOas` (one record each, one arch and grid) or their
-    :meth:`ArchOas.to_dict` (e.g. ``json.load`` of ``rocking arch oas`` files). ``fractiles``:
-    each in (0, 1]. Returns ``rocking arch suite --json`` as a dict (``name``, ``shape``,
-    ``onset``, ``records``, ``characteristic``, ``block_rule``)."""
+    :meth:`ArchOas.to_dict` (e.g. ``json.load`` of ``rocking arch oas`` files); the spectra are
+    computed once and the suite takes milliseconds. ``fractiles``: each in (0, 1]. Returns an
+    :class:`ArchSuite`."""
     texts = [_report_json(s, ArchOas, "an ArchOas") for s in spectra]
     qs = [fractiles] if isinstance(fractiles, numbers.Real) else list(fractiles)
     for k, q in enumerate(qs):
         if isinstance(q, bool) or not isinstance(q, numbers.Real):
             raise TypeError(f"fractiles[{k}]: expected a number, got {type(q).__name__}")
-    return _rocking._arch_suite(texts, str(name), [float(q) for q in qs])
+    return ArchSuite(_rocking._arch_suite(texts, str(name), [float(q) for q in qs]))

@@ -100,14 +100,23 @@ def test_arch_suite_as_the_cli(root, cli, reversed_record, tmp_path, small_arch_
     expected = cli("arch", "suite", *files, "--json", "--name", "two", "--fractile", "0.5,0.9")
     dicts = [json.loads(f.read_text()) for f in files]
     kept = copy.deepcopy(dicts)
-    assert rocking.arch_suite(dicts, name="two", fractiles=[0.5, 0.9]) == expected
+    assert rocking.arch_suite(dicts, name="two", fractiles=[0.5, 0.9]).to_dict() == expected
     assert dicts == kept
     # from the package's own results: the same report (the characteristic OAS has no wall time)
     results = [small_arch_oas, rocking.arch_oas(other, t1=0.3, **SMALL)]
+    before = [r.to_dict() for r in results]
     got = rocking.arch_suite(results, name="two", fractiles=[0.5, 0.9])
-    assert got == expected
-    assert [r["record"] for r in got["records"]] == ["reversed", "synthetic"]
-    assert got["block_rule"]["records"] == 2
+    assert got.to_dict() == expected and [r.to_dict() for r in results] == before
+    assert got.name == "two" and [r["record"] for r in got.records] == ["reversed", "synthetic"]
+    assert got.block_rule["records"] == 2 and got.records[1]["block_t1"] == 0.3
+    median = got.characteristic[0]
+    assert isinstance(median["oas"], rocking.ArchOas) and median["design_t1"] == median["oas"].t1
+    assert got.design_t1 == {0.5: median["design_t1"], 0.9: got.characteristic[1]["design_t1"]}
+    # the characteristic arch OAS of two records lies between them, level by level
+    lo = np.fmin(results[0].largest_unsafe, results[1].largest_unsafe)
+    hi = np.fmax(results[0].largest_unsafe, results[1].largest_unsafe)
+    assert np.all((lo <= median["oas"].largest_unsafe) & (median["oas"].largest_unsafe <= hi))
+    assert "2 records" in repr(got)
 
 
 def test_ctrl_c_stops_an_arch_sweep(root):
