@@ -219,6 +219,13 @@ class ArchSuite:
         """``rocking arch suite --json`` (a new dict)."""
         return copy.deepcopy(self._raw)
 
+    def plot(self, against="p", ax=None):
+        """The characteristic OAS of each fractile against ``p`` or ``f``. matplotlib (``pip
+        install './python[plot]'``). Returns the axes."""
+        from . import plot
+
+        return plot.arch_suite(self, against=against, ax=ax)
+
     def __repr__(self):
         t1 = ", ".join(f"{q}: {'-' if t is None else f'{t:.4f} s'}" for q, t in self.design_t1.items())
         return f"ArchSuite({self.name!r}: {len(self.records)} records, design t1 {{{t1}}})"

@@ -210,3 +210,5 @@ def test_arch_plots(small_arch_oas):
     assert len(oc.plot().lines) == 2
     with pytest.raises(ValueError, match="against"):
         small_arch_oas.plot(against="size")
+    suite = rocking.arch_suite([small_arch_oas])
+    assert len(suite.plot().lines) == 2 and len(suite.plot(against="f").lines) == 4  # and the f_min lines

@@ -113,3 +113,16 @@ def test_suite_errors(root, two_oas):
     coarse["record"] = "coarse"
     with pytest.raises(rocking.RockingError, match="level"):
         rocking.suite([two_oas[0], coarse])
+
+
+def test_suite_plot(two_oas):
+    pytest.importorskip("matplotlib")
+    import matplotlib
+
+    matplotlib.use("Agg")
+    s = rocking.suite(two_oas)
+    ax = s.plot()
+    assert len(ax.lines) == 2 + 2  # the two records, the two fractiles
+    assert len(s.plot(against="f").lines) == 2 + 2 * 2  # and each fractile's design f_min
+    with pytest.raises(ValueError, match="against"):
+        s.plot(against="size")
