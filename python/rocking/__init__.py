@@ -15,8 +15,9 @@ left corner (``>= 0``, status +1); status 0 is closed (SPEC §1).
   driver, with the history as arrays, the events and
   the summary of ``rocking simulate``;
 - :func:`oas`, :func:`t1`, :func:`oc`: overturning spectra (thesis Chapter 5), parallel,
-  interruptible with Ctrl-C; :func:`design_width`, :func:`design_check`: the design method
-  (Eq. 31);
+  interruptible with Ctrl-C; :func:`tp` (Eq. 25), :func:`suite` (the suite procedure, 5.3.1);
+  :func:`design_width`, :func:`design_check`: the design method (Eq. 31);
+- :func:`arch_oas`, :func:`arch_oc`, :func:`arch_suite`: the same spectra of voussoir arches;
 - :mod:`rocking.plot`: matplotlib plots of the results (needs ``matplotlib``);
 - :class:`RockingError`, the one exception (a ``ValueError`` with the C ABI's status code);
 - :mod:`rocking.opensees`: the coupling with an openseespy model (needs ``openseespy``).
@@ -51,7 +52,8 @@ from . import plot
 from ._design import design_check, design_width
 from ._errors import error as _error
 from ._simulate import ContactSimulation, LoopSimulation, Simulation, simulate
-from ._spectra import Oas, Oc, oas, oc, t1
+from ._spectra import Oas, Oc, Suite, oas, oc, suite, t1, tp
+from ._arch import ArchOas, ArchOc, ArchSuite, arch_oas, arch_oc, arch_suite
 
 # Defaults, so that a RockingError raised from Python code has every attribute too.
 RockingError.code = None
@@ -70,17 +72,24 @@ GRAVITY = 9.81
 __all__ = [
     "ERROR_CODES",
     "GRAVITY",
+    "ArchOas",
+    "ArchOc",
+    "ArchSuite",
     "Oas",
     "Oc",
     "Pulse",
     "Record",
     "Report",
     "RockingError",
+    "Suite",
     "ContactSimulation",
     "LoopSimulation",
     "Simulation",
     "__version__",
     "check_configuration",
+    "arch_oas",
+    "arch_oc",
+    "arch_suite",
     "column_mass_matrix",
     "design_check",
     "design_width",
@@ -98,6 +107,8 @@ __all__ = [
     "reduce",
     "ricker",
     "simulate",
+    "suite",
     "t1",
+    "tp",
     "triangular",
 ]

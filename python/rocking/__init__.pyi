@@ -227,6 +227,152 @@ def oc(
 ) -> Oc:
     """The overturning curve of a pulse shape (thesis Fig. 8, 33, 40), as ``rocking oc --json``."""
 
+@overload
+def tp(records: Union[Record, Path]) -> Dict[str, Any]: ...
+@overload
+def tp(records: Union[List[Union[Record, Path]], Tuple[Union[Record, Path], ...]]) -> List[Dict[str, Any]]: ...
+
+class Suite:
+    """The design curves of a record suite (thesis 5.3.1-5.3.2), as ``rocking suite --json``."""
+
+    name: str
+    records: List[Oas]
+    characteristic: List[Dict[str, Any]]
+    """Per fractile: ``fractile``, ``design_t1``, ``f_min``, ``record_t1_fractile``, ``oas`` (an
+    :class:`Oas`), ``violations``."""
+    hulls: List[Dict[str, Any]]
+    own_parameters: List[Dict[str, Any]]
+    seconds: float
+    @property
+    def design_t1(self) -> Dict[float, Optional[float]]: ...
+    def to_dict(self) -> Dict[str, Any]: ...
+    def plot(self, against: Literal["p", "f"] = "p", ax: Any = None) -> Any: ...
+
+def suite(
+    spectra: Sequence[Union[Oas, Mapping[str, Any]]],
+    *,
+    name: str = "suite",
+    fractiles: Union[float, Sequence[float]] = (0.5, 0.84),
+) -> Suite:
+    """The suite procedure on the records' OAS, as ``rocking suite --merge ... --json``."""
+
+class ArchOas:
+    """The OAS of an arch family for a record, as ``rocking arch oas --json``."""
+
+    record: str
+    shape: Dict[str, Any]
+    onset: Dict[str, Any]
+    thickness_ratio: float
+    embrace_angle: float
+    """Radians (the argument ``embrace`` is in degrees)."""
+    voussoirs: int
+    lambda_: float
+    p_at_1m: float
+    gravity: float
+    sizes: Float64Array
+    levels: Float64Array
+    largest_unsafe: Int64Array
+    size: Float64Array
+    p: Float64Array
+    f: Float64Array
+    simulations: Int64Array
+    t1: Optional[float]
+    f_min: Optional[float]
+    level_at_f_min: Optional[float]
+    size_at_f_min: Optional[float]
+    check: Optional[Dict[str, Any]]
+    runs: Dict[str, Any]
+    seconds: float
+    @property
+    def unsafe(self) -> BoolArray: ...
+    def to_dict(self) -> Dict[str, Any]: ...
+    def plot(self, against: Literal["p", "f"] = "p", ax: Any = None, fits: bool = True) -> Any: ...
+
+class ArchOc:
+    """The overturning curve of an arch under a pulse, as ``rocking arch oc --json``."""
+
+    pulse: str
+    radius: float
+    p: float
+    shape: Dict[str, Any]
+    onset: Dict[str, Any]
+    thickness_ratio: float
+    embrace_angle: float
+    voussoirs: int
+    lambda_: float
+    p_at_1m: float
+    p_tp: Float64Array
+    t_p: Float64Array
+    levels: Float64Array
+    collapses: BoolArray
+    envelope: Float64Array
+    runs: Dict[str, Any]
+    seconds: float
+    def to_dict(self) -> Dict[str, Any]: ...
+    def plot(self, ax: Any = None) -> Any: ...
+
+def arch_oas(
+    record: Union[Record, Path],
+    *,
+    thickness_ratio: float = 0.15,
+    embrace: float = 180.0,
+    voussoirs: int = 20,
+    dt_factor: float = 1.0,
+    radius_max: float = 100.0,
+    radius_min: float = 1.0,
+    radius_n: int = 12,
+    level_min: float = 1.5,
+    level_max: float = 6.0,
+    level_n: int = 10,
+    t1: Optional[float] = None,
+    threads: Optional[int] = None,
+    progress: Optional[Progress] = None,
+) -> ArchOas:
+    """The OAS of an arch family for a record, as ``rocking arch oas --json``; parallel, Ctrl-C
+    stops it."""
+
+def arch_oc(
+    shape: str = "half-sine",
+    *,
+    thickness_ratio: float = 0.15,
+    embrace: float = 180.0,
+    voussoirs: int = 20,
+    dt_factor: float = 1.0,
+    radius: float = 5.0,
+    ptp_min: float = 0.5,
+    ptp_max: float = 10.0,
+    ptp_n: int = 8,
+    level_max: float = 6.0,
+    level_n: int = 11,
+    threads: Optional[int] = None,
+    progress: Optional[Progress] = None,
+) -> ArchOc:
+    """The overturning curve of an arch under a pulse, as ``rocking arch oc --json``."""
+
+class ArchSuite:
+    """The suite procedure on arch OAS, as ``rocking arch suite --json``."""
+
+    name: str
+    shape: Dict[str, Any]
+    onset: Dict[str, Any]
+    records: List[Dict[str, Any]]
+    characteristic: List[Dict[str, Any]]
+    """Per fractile: ``fractile``, ``design_t1``, ``f_min``, ``level_at_f_min``,
+    ``size_at_f_min``, ``record_t1_fractile``, ``oas`` (an :class:`ArchOas`), ``check``."""
+    block_rule: Dict[str, Any]
+    @property
+    def design_t1(self) -> Dict[float, Optional[float]]: ...
+    def to_dict(self) -> Dict[str, Any]: ...
+    def plot(self, against: Literal["p", "f"] = "p", ax: Any = None) -> Any: ...
+
+def arch_suite(
+    spectra: Sequence[Union[ArchOas, Mapping[str, Any]]],
+    *,
+    name: str = "arch suite",
+    fractiles: Union[float, Sequence[float]] = (0.5, 0.84),
+) -> ArchSuite:
+    """The suite procedure on arch OAS, as ``rocking arch suite --json``."""
+
 def design_width(
     height: npt.ArrayLike,
     pga: npt.ArrayLike,

@@ -1,10 +1,12 @@
-"""Overturning spectra (thesis Chapter 5; SPEC §7): ``oas``, ``t1`` and ``oc``, with the options
-and the JSON of ``rocking oas``, ``rocking t1`` and ``rocking oc``, and numpy arrays out.
+"""Overturning spectra (thesis Chapter 5; SPEC §7): ``oas``, ``t1``, ``oc``, ``tp`` and ``suite``,
+with the options and the JSON of ``rocking oas``, ``t1``, ``oc``, ``tp`` and ``suite --merge``,
+and numpy arrays out.
 
 The sweeps run in parallel (rayon, every core unless ``threads``) without the GIL, and stop on
 Ctrl-C (``KeyboardInterrupt``) between levels (OAS) or pulse durations (OC). The results do not
 depend on the number of threads: every level and every duration is the library's own call."""
 import copy
+import json
 import numbers
 import os
 
@@ -136,13 +138,17 @@ def _count(x):
     return int(x) if isinstance(x, numbers.Integral) else x
 
 
+#: The arguments that are counts.
+_INTEGRAL = ("blocks", "impacts", "threads", "voussoirs", "radius_n", "level_n", "ptp_n")
+
+
 def _numbers(**args):
     """A TypeError naming the argument that is not a number (``None`` allowed for ``tail`` and
     ``threads``): the extension's own message names it on some Python versions only."""
     for name, v in args.items():
         if v is None and name in ("tail", "threads"):
             continue
-        integral = name in ("blocks", "impacts", "threads")
+        integral = name in _INTEGRAL
         kind = numbers.Integral if integral else numbers.Real
         if isinstance(v, bool) or not isinstance(v, kind):
             raise TypeError(f"{name}: expected {'an integer' if integral else 'a number'}, got {type(v).__name__}")
@@ -202,9 +208,7 @@ def t1(records, *, slenderness=12.0, levels=80, level_max=10.0, sizes=120, size_
     ``seconds``, ``file`` (the path; None for a Record), ``slenderness``, ``blocks``,
     ``dt_factor``, ``search``, ``t_p`` — the replacement sine duration of Eq. 25); a list of them:
     a list of dicts, in order."""
-    single = not isinstance(records, (list, tuple))
-    items = [records] if single else list(records)
-    items = [os.fspath(r) if isinstance(r, os.PathLike) else r for r in items]
+    items, single = _paths(records)
     rows = _rocking._t1(items, *_grid_args(slenderness, levels, level_max, sizes, size_min, size_max, blocks,
                                            bisection, impacts, dt_factor, tail, hermite, rk4, full_runs, threads,
                                            progress))
@@ -232,3 +236,97 @@ def oc(shape="half-sine", *, blocks=1, slenderness=12.0, size=1.0, ptp=40, ptp_m
 
 
 oc.__doc__ = oc.__doc__.replace("{simulation}", _SIMULATION_DOC.strip())
+
+
+def _paths(records):
+    """``records`` (one or a list) as the extension's list, and whether it was one."""
+    single = not isinstance(records, (list, tuple))
+    items = [records] if single else list(records)
+    return [os.fspath(r) if isinstance(r, os.PathLike) else r for r in items], single
+
+
+def tp(records):
+    """The replacement sine duration ``t_p = I_max / (F a_max)`` (thesis 5.3.5, Eq. 25, Fig. 52,
+    ``F = 2/π``) of a record, as ``rocking tp RECORD --json``: no simulation, milliseconds.
+
+    ``records``: a :class:`rocking.Record` or a path: returns one dict (``record``, ``file``
+    (None for a Record), ``a_max`` (m/s², the peak), ``i_max`` (m/s, the largest single-lobe
+    impulse), ``lobe_start``, ``lobe_end`` (s, that lobe), ``fullness`` (``F``), ``t_p`` (s)); a
+    list of them: a list of dicts, in order."""
+    items, single = _paths(records)
+    rows = _rocking._tp(items)
+    return rows[0] if single else rows
+
+
+class Suite:
+    """The design curves of a record suite (thesis 5.3.1–5.3.2, Fig. 44, 47–49), as ``rocking
+    suite --json``: ``records`` every record's :class:`Oas` (by name), ``characteristic`` one
+    dict per fractile (``fractile``, ``design_t1`` — the suite's ``t_1 = i_cr / f_min`` of the
+    characteristic transformed OAS, ``f_min``, ``record_t1_fractile``, ``oas`` — the
+    characteristic OAS as an :class:`Oas`, ``violations`` — Eq. 21, 29, 30 with these parameters
+    checked against every record below levels 4, 6, 12 and at every level), ``hulls`` (the
+    normalised convex hulls of the transformed OAS, Fig. 49), ``own_parameters`` (the same check
+    with each record's own ``t_1``, ``t_1'``, ``β``), ``seconds`` (the records' wall times).
+    :meth:`to_dict` is the JSON of ``rocking suite --json``."""
+
+    def __init__(self, raw, records_i_cr, characteristic_i_cr):
+        self._raw = raw
+        self.name = raw["name"]
+        self.records = [Oas(r, i) for r, i in zip(raw["records"], records_i_cr)]
+        self.characteristic = []
+        for c, i in zip(raw["characteristic"], characteristic_i_cr):
+            c = dict(c)
+            c["oas"] = Oas(c["oas"], i)
+            self.characteristic.append(c)
+        self.hulls = raw["hulls"]
+        self.own_parameters = raw["own_parameters"]
+        self.seconds = raw["seconds"]
+
+    @property
+    def design_t1(self):
+        """``{fractile: design t_1 (s) or None}``."""
+        return {c["fractile"]: c["design_t1"] for c in self.characteristic}
+
+    def to_dict(self):
+        """``rocking suite --json`` (a new dict)."""
+        return copy.deepcopy(self._raw)
+
+    def plot(self, against="p", ax=None):
+        """The characteristic OAS of each fractile against ``p`` or ``f``, with the records' OAS. matplotlib (``pip
+        install './python[plot]'``). Returns the axes."""
+        from . import plot
+
+        return plot.suite(self, against=against, ax=ax)
+
+    def __repr__(self):
+        t1 = ", ".join(f"{q}: {'-' if t is None else f'{t:.4f} s'}" for q, t in self.design_t1.items())
+        return f"Suite({self.name!r}: {len(self.records)} records, design t1 {{{t1}}})"
+
+
+def _report_json(spectrum, cls, what):
+    """The JSON text of one OAS of a suite: an ``Oas``/``ArchOas`` result or its ``to_dict()``."""
+    if isinstance(spectrum, cls):
+        raw = spectrum._raw
+    elif isinstance(spectrum, dict):
+        raw = spectrum
+    else:
+        raise TypeError(f"spectra: expected {what} or its to_dict(), got {type(spectrum).__name__}")
+    return json.dumps(raw, allow_nan=False)
+
+
+def suite(spectra, *, name="suite", fractiles=(0.5, 0.84)):
+    """The suite procedure of thesis 5.3.1 on the OAS of a record suite: the characteristic OAS
+    at each fractile with its design ``t_1``, the normalised convex hulls of the transformed OAS,
+    and Eq. 21, 29, 30 checked against every record — as ``rocking suite --merge`` on the
+    records' ``rocking oas --json`` reports.
+
+    ``spectra``: the records' :class:`Oas` (from :func:`oas`, one record each, on one grid), or
+    their :meth:`Oas.to_dict` (e.g. ``json.load`` of ``rocking oas --json`` files); the OAS are
+    computed once and the analysis takes milliseconds. ``name``: the suite's name in the report;
+    ``fractiles``: each in (0, 1]. Returns a :class:`Suite`."""
+    texts = [_report_json(s, Oas, "an Oas") for s in spectra]
+    qs = [fractiles] if isinstance(fractiles, numbers.Real) else list(fractiles)
+    for k, q in enumerate(qs):
+        if isinstance(q, bool) or not isinstance(q, numbers.Real):
+            raise TypeError(f"fractiles[{k}]: expected a number, got {type(q).__name__}")
+    return Suite(*_rocking._suite(texts, str(name), [float(q) for q in qs]))

@@ -6,7 +6,9 @@ called. Each draws into ``ax`` (a new figure's axes by default) and returns the 
   simulate --plot``);
 - :func:`oas`: an overturning acceleration spectrum against ``p`` (Fig. 36), ``f`` (Fig. 37) or
   the size, with the simplified spectra (as ``rocking oas --svg``);
-- :func:`oc`: an overturning curve (Fig. 33a, as ``rocking oc --svg``).
+- :func:`oc`: an overturning curve (Fig. 33a, as ``rocking oc --svg``);
+- :func:`arch_oas`, :func:`arch_oc`: the spectra of an arch (as ``rocking arch oas|oc --svg``);
+- :func:`suite`, :func:`arch_suite`: the characteristic OAS of a record suite.
 """
 import numpy as np
 
@@ -139,5 +141,100 @@ def oc(result, ax=None):
     ax.set_xlabel("p t_p")
     ax.set_ylabel("a_p / a_p,min")
     ax.set_title(f"Overturning curve, {result.shape}, {result.blocks} block{'s' if result.blocks != 1 else ''}")
+    ax.legend(fontsize="small")
+    return ax
+
+
+def arch_oas(result, against="p", ax=None, fits=True):
+    """The boundary of a :class:`rocking.ArchOas` (the largest radius that collapses at each
+    level ``a_p / (λ g)``) against ``p`` of the onset mechanism (1/s) or ``f = p a_p / (λ g)``
+    (1/s); with ``fits``, Eq. 21 with ``i_cr = 1`` for the arch's own ``t_1`` and for the checked
+    one (against ``f``: the lines ``f = 1/t_1``), as ``rocking arch oas --svg``."""
+    if against not in ("p", "f"):
+        raise ValueError(f"against = {against!r}: expected 'p' or 'f'")
+    ax = _axes(ax)
+    m = result.unsafe
+    x = {"p": result.p, "f": result.f}[against][m]
+    ax.plot(x, result.levels[m], "o", markersize=3, label="largest radius that collapses")
+    lmax = max(float(result.levels.max(initial=1.0)), 1.0)
+    if fits:
+        checked = None if result.check is None else result.check["t1"]
+        p = np.linspace(0.0, np.nanmax(x, initial=0.1) * 1.2, 401)[1:]
+        for t1, what in ((result.t1, "the arch's own"), (checked, "single-block")):
+            if t1 is None:
+                continue
+            label = f"Eq. 21 (i_cr = 1), {what} t1 = {t1:.3f} s"
+            if against == "f":
+                ax.plot([1.0 / t1, 1.0 / t1], [1.0, lmax], "--", label=label)
+            else:
+                eq21, _ = _rocking._simplified_oas(p, t1, 1.0)
+                ax.plot(p, eq21, "--", label=label)
+    ax.set_xlabel({"p": "p of the onset mechanism [1/s]", "f": "f = p a_p / (λ g) [1/s]"}[against])
+    ax.set_ylabel("a_p / (λ g)")
+    ax.set_ylim(0.0, lmax)
+    ax.set_title(f"Arch OAS, t/R = {result.thickness_ratio}, {result.voussoirs} voussoirs, {result.record}")
+    ax.legend(fontsize="small")
+    return ax
+
+
+def arch_oc(result, ax=None):
+    """The points of a :class:`rocking.ArchOc` that collapse and its envelope (the lowest level
+    that collapses at each ``p t_p``), against ``p t_p`` on a log axis."""
+    ax = _axes(ax)
+    rows, cols = np.nonzero(result.collapses)
+    ax.plot(result.p_tp[rows], result.levels[cols], "o", markersize=3, label="collapses")
+    ax.plot(result.p_tp, result.envelope, "-", label="envelope")
+    ax.set_xscale("log")
+    ax.set_xlabel("p t_p (p of the onset mechanism)")
+    ax.set_ylabel("a_p / (λ g)")
+    ax.set_title(f"Arch OC, {result.pulse}, R = {result.radius} m, t/R = {result.thickness_ratio}, "
+                 f"{result.voussoirs} voussoirs")
+    ax.legend(fontsize="small")
+    return ax
+
+
+def suite(result, against="p", ax=None):
+    """The records' OAS of a :class:`rocking.Suite` (grey points) and the characteristic OAS at
+    each fractile (lines), against ``p`` (1/s, Fig. 44, 47a) or ``f`` (1/s, Fig. 47b, with the
+    design ``f_min = i_cr / t_1`` of each fractile as a dashed line), as ``rocking suite --svg``
+    draws them."""
+    return _suite(result, against, ax, "a_p / a_p,min", "p [1/s]", "f = p a_p / a_p,min [1/s]", "OAS")
+
+
+def arch_suite(result, against="p", ax=None):
+    """The characteristic arch OAS of a :class:`rocking.ArchSuite` at each fractile against ``p``
+    of the onset mechanism or ``f`` (with the design ``f_min = 1/t_1`` of each fractile, dashed).
+    The suite keeps the records' rows, not their spectra: draw those with
+    :meth:`rocking.ArchOas.plot` into the same ``ax``."""
+    return _suite(result, against, ax, "a_p / (λ g)", "p of the onset mechanism [1/s]", "f = p a_p / (λ g) [1/s]",
+                  "arch OAS")
+
+
+def _suite(result, against, ax, level_label, p_label, f_label, what):
+    if against not in ("p", "f"):
+        raise ValueError(f"against = {against!r}: expected 'p' or 'f'")
+    ax = _axes(ax)
+    lmax = 1.0
+    for k, o in enumerate(getattr(result, "records", [])):
+        if not hasattr(o, "unsafe"):
+            break  # an arch suite's rows are not spectra
+        m = o.unsafe
+        x = o.p if against == "p" else o.f
+        label = f"OAS of the {len(result.records)} records" if k == 0 else None
+        ax.plot(x[m], o.levels[m], "o", markersize=2, color="0.73", label=label)
+        lmax = max(lmax, float(o.levels.max(initial=1.0)))
+    for c in result.characteristic:
+        o = c["oas"]
+        m = o.unsafe
+        x = o.p if against == "p" else o.f
+        (line,) = ax.plot(x[m], o.levels[m], "-o", markersize=3, label=f"characteristic, fractile {c['fractile']}")
+        lmax = max(lmax, float(o.levels.max(initial=1.0)))
+        if against == "f" and c["f_min"] is not None:
+            ax.plot([c["f_min"]] * 2, [1.0, lmax], "--", color=line.get_color(),
+                    label=f"design t1 = {c['design_t1']:.3f} s")
+    ax.set_xlabel(p_label if against == "p" else f_label)
+    ax.set_ylabel(level_label)
+    ax.set_ylim(0.0, lmax)
+    ax.set_title(f"{'Transformed ' if against == 'f' else ''}{what}, {result.name}")
     ax.legend(fontsize="small")
     return ax

@@ -6,6 +6,7 @@
 //! `rocking.RockingError` with the C ABI's status code (`errors.rs`). The physics lives in the
 //! library, free of Python.
 
+mod arch;
 mod arrays;
 mod column;
 mod design;
@@ -56,6 +57,11 @@ fn _rocking(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(spectra::_t1, m)?)?;
     m.add_function(wrap_pyfunction!(spectra::_oc, m)?)?;
     m.add_function(wrap_pyfunction!(spectra::_simplified_oas, m)?)?;
+    m.add_function(wrap_pyfunction!(spectra::_tp, m)?)?;
+    m.add_function(wrap_pyfunction!(spectra::_suite, m)?)?;
+    m.add_function(wrap_pyfunction!(arch::_arch_oas, m)?)?;
+    m.add_function(wrap_pyfunction!(arch::_arch_oc, m)?)?;
+    m.add_function(wrap_pyfunction!(arch::_arch_suite, m)?)?;
     m.add_function(wrap_pyfunction!(design::_design_width, m)?)?;
     m.add_function(wrap_pyfunction!(design::_design_check, m)?)?;
     Ok(())

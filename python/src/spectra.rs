@@ -3,7 +3,8 @@
 //! `t1` of a record, `oc` of a pulse shape. The sweeps run on rayon with the GIL released and
 //! stop on Ctrl-C between levels (OAS) or pulse durations (OC) (`sweep.rs`): each unit is the
 //! library's own call on that one level or duration, so the results are the library's to the
-//! bit, whatever the number of threads.
+//! bit, whatever the number of threads. `tp` (no simulation) and `suite` (the analysis of OAS
+//! already computed, as `rocking suite --merge`) run on the calling thread.
 
 use std::path::PathBuf;
 use std::time::Instant;
@@ -13,10 +14,10 @@ use pyo3::types::PyInt;
 use rocking::driver::{EventLocator, Integrator};
 use rocking::ground::records::{self, PlainFormat, Record as CoreRecord};
 use rocking::model::single_block::EquivalentBlock;
-use rocking::spectra::report::{OasReport, OcReport, SummaryReport, T1Row};
+use rocking::spectra::report::{OasReport, OcReport, SuiteReport, SummaryReport, T1Row};
 use rocking::spectra::{
     self, column_of_size, linear_levels, log_sizes, Oas, OasLevel, OasOptions, Oc, PulseShape,
-    SizeSearch, SpectraError, SweepOptions,
+    SizeSearch, SpectraError, SweepOptions, SINE_FULLNESS,
 };
 use rocking::validate;
 
@@ -26,7 +27,7 @@ use crate::ground::Record;
 use crate::json::to_python;
 use crate::sweep::Runner;
 
-fn spectra_error(e: SpectraError) -> PyErr {
+pub(crate) fn spectra_error(e: SpectraError) -> PyErr {
     value_error(e.to_string())
 }
 
@@ -82,7 +83,7 @@ fn count_or_values(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<Result<usize,
 
 /// A `Record`, or the path of a record file read as the CLI reads it (`.AT2` in g, plain text in
 /// m/s²). Returns the record and the file (None for a `Record`).
-fn record_of(obj: &Bound<'_, PyAny>) -> PyResult<(CoreRecord, Option<String>)> {
+pub(crate) fn record_of(obj: &Bound<'_, PyAny>) -> PyResult<(CoreRecord, Option<String>)> {
     if let Ok(r) = obj.cast::<Record>() {
         return Ok((r.get().inner.clone(), None));
     }
@@ -228,7 +229,7 @@ pub fn _t1<'py>(
 }
 
 /// The pulse shapes of `rocking oc --shape` (hyphens or underscores).
-fn shape_of(name: &str) -> PyResult<PulseShape> {
+pub(crate) fn shape_of(name: &str) -> PyResult<PulseShape> {
     Ok(match name.replace('_', "-").as_str() {
         "half-sine" => PulseShape::half_sine(),
         "full-sine" => PulseShape::full_sine(),
@@ -335,4 +336,108 @@ pub fn _simplified_oas<'py>(
         crate::arrays::new_vector(py, eq21).into_any(),
         eq30.map(|v| crate::arrays::new_vector(py, v).into_any()),
     ))
+}
+
+/// One record's row of `rocking tp --json` (cli/src/commands/tp.rs); `file` is None for a
+/// `Record`.
+#[derive(serde::Serialize)]
+struct TpRow {
+    record: String,
+    file: Option<String>,
+    a_max: f64,
+    i_max: f64,
+    lobe_start: f64,
+    lobe_end: f64,
+    fullness: f64,
+    t_p: f64,
+}
+
+/// `tp --json`'s row of each record (a `Record` or a path), in order: the replacement sine
+/// (Eq. 25).
+#[pyfunction]
+pub fn _tp<'py>(py: Python<'py>, records: Vec<Bound<'py, PyAny>>) -> PyResult<Bound<'py, PyAny>> {
+    let mut rows = Vec::with_capacity(records.len());
+    for (k, r) in records.iter().enumerate() {
+        let (record, file) = record_of(r)?;
+        let s = spectra::replacement_sine(&record).ok_or_else(|| {
+            value_error(format!(
+                "records[{k}]: `{}` is zero everywhere",
+                record.name
+            ))
+        })?;
+        rows.push(TpRow {
+            record: record.name.clone(),
+            file,
+            a_max: s.a_max,
+            i_max: s.i_max,
+            lobe_start: s.lobe_start,
+            lobe_end: s.lobe_end,
+            fullness: SINE_FULLNESS,
+            t_p: s.t_p,
+        });
+    }
+    to_python(py, &rows)
+}
+
+/// Fractiles in (0, 1] (`rocking suite --fractile`).
+pub(crate) fn fractiles_of(fractiles: Vec<f64>) -> PyResult<Vec<f64>> {
+    if fractiles.is_empty() {
+        return Err(value_error("fractiles: needs at least one fractile"));
+    }
+    for (k, &q) in fractiles.iter().enumerate() {
+        if !(q > 0.0 && q <= 1.0) {
+            return Err(value_error(format!(
+                "fractiles[{k}] = {q}: must be in (0, 1]"
+            )));
+        }
+    }
+    Ok(fractiles)
+}
+
+/// The suite procedure on OAS already computed, as `rocking suite --merge` on `oas --json`
+/// reports: `spectra` the JSON texts of the records' reports. Returns `(suite --json as a dict,
+/// i_cr of each record of the report, i_cr of each characteristic OAS)`, in the report's order.
+#[pyfunction]
+pub fn _suite<'py>(
+    py: Python<'py>,
+    spectra: Vec<String>,
+    name: &str,
+    fractiles: Vec<f64>,
+) -> PyResult<(Bound<'py, PyAny>, Vec<f64>, Vec<f64>)> {
+    let fractiles = fractiles_of(fractiles)?;
+    if spectra.is_empty() {
+        return Err(value_error("spectra: a suite needs at least one OAS"));
+    }
+    let mut out: Vec<(Oas, f64)> = Vec::with_capacity(spectra.len());
+    for (k, text) in spectra.iter().enumerate() {
+        let report: OasReport = serde_json::from_str(text).map_err(|e| {
+            value_error(format!(
+                "spectra[{k}]: not an OAS (`rocking oas --json`): {e}"
+            ))
+        })?;
+        let seconds = report.summary.seconds;
+        let Some(o) = OasReport::merge(vec![report]) else {
+            continue;
+        };
+        if out.iter().any(|(p, _)| p.record == o.record) {
+            return Err(value_error(format!(
+                "spectra[{k}]: record `{}` is already in the suite",
+                o.record
+            )));
+        }
+        out.push((o, seconds));
+    }
+    let report = py
+        .detach(|| SuiteReport::of(name, &out, &fractiles))
+        .map_err(spectra_error)?;
+    let i_cr = |reports: Vec<&OasReport>| -> Vec<f64> {
+        reports
+            .into_iter()
+            .filter_map(|r| OasReport::merge(vec![r.clone()]))
+            .map(|o| o.i_cr())
+            .collect()
+    };
+    let records = i_cr(report.records.iter().collect());
+    let characteristic = i_cr(report.characteristic.iter().map(|c| &c.oas).collect());
+    Ok((to_python(py, &report)?, records, characteristic))
 }

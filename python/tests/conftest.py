@@ -3,6 +3,7 @@ from src/samples.rs) and the C ABI through ctypes (tests/python/smoke.py's decla
 import json
 import os
 import signal
+import subprocess
 import sys
 from pathlib import Path
 
@@ -48,3 +49,30 @@ def cabi():
             pytest.skip("no target/release/librocking.so (cargo build --release) and ROCKING_LIB unset")
         path = default
     return smoke, smoke.load(path)
+
+
+@pytest.fixture(scope="session")
+def cli(root):
+    """`cli(*args)`: the JSON that the `rocking` CLI (ROCKING_CLI, else target/release/rocking)
+    prints for `args`; skips when there is no CLI."""
+    path = os.environ.get("ROCKING_CLI") or str(root / "target" / "release" / "rocking")
+    if not os.path.exists(path):
+        pytest.skip("no rocking CLI (cargo build --release -p rocking-cli) and ROCKING_CLI unset")
+
+    def run(*args):
+        out = subprocess.run([path, *map(str, args)], check=True, capture_output=True, text=True)
+        return json.loads(out.stdout)
+
+    return run
+
+
+@pytest.fixture(scope="session")
+def reversed_record(root, tmp_path_factory):
+    """The bundled record reversed in time, as `reversed.AT2` in a temporary folder (a second
+    record for the suites)."""
+    lines = (root / "examples/records/synthetic.AT2").read_text().splitlines()
+    values = [float(x) for line in lines[4:] for x in line.split()][::-1]
+    body = ["".join(f"{v:16.7E}" for v in values[i:i + 5]) for i in range(0, len(values), 5)]
+    path = tmp_path_factory.mktemp("records") / "reversed.AT2"
+    path.write_text("\n".join(lines[:4] + body) + "\n")
+    return path

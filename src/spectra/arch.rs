@@ -422,7 +422,10 @@ impl ArchRunCounts {
         self.events += r.events;
         self.simulated_time += r.simulated_time;
     }
-    fn merge(&mut self, o: &ArchRunCounts) {
+
+    /// Adds the counts of `o` (the next level of an OAS: [`arch_oas`] merges its levels'
+    /// counts in level order).
+    pub fn merge(&mut self, o: &ArchRunCounts) {
         self.collapsed += o.collapsed;
         self.survived += o.survived;
         self.never_moved += o.never_moved;

@@ -60,6 +60,23 @@ impl ArchOc {
             .map(|j| j.map(|j| self.levels[j]))
             .collect()
     }
+    /// Appends the row of `t_p` ([`arch_oc_row`] over `self.levels`): its verdicts, and its runs
+    /// counted in order.
+    pub fn push_row(&mut self, t_p: f64, row: Vec<Result<ArchRun, ArchFailure>>) {
+        self.t_p.push(t_p);
+        for (j, r) in row.into_iter().enumerate() {
+            match r {
+                Ok(r) => {
+                    self.runs.add(&r, self.levels[j], t_p);
+                    self.collapsed.push(r.collapsed);
+                }
+                Err(f) => {
+                    self.runs.failures.push(f);
+                    self.collapsed.push(false);
+                }
+            }
+        }
+    }
 }
 
 /// The OC of the arch of radius `radius` for `pulse`, parallel over `t_p`. `levels` ascending.
@@ -78,50 +95,52 @@ pub fn arch_overturning_curve(
     let sim = &options.simulation;
     let onset = arch_onset(&options.shape, sim.gravity, &sim.model)?;
     let rows = map_indexed(t_p.len(), |i| {
-        let row: Result<Vec<Result<ArchRun, ArchFailure>>, SpectraError> = levels
-            .iter()
-            .map(
-                |&l| match arch_pulse_run(pulse, &onset, l, t_p[i], radius, options) {
-                    Ok(r) => Ok(Ok(r)),
-                    Err(SpectraError::Loop(message)) => Ok(Err(ArchFailure {
-                        level: l,
-                        radius: t_p[i],
-                        message,
-                    })),
-                    Err(e) => Err(e),
-                },
-            )
-            .collect();
+        let row = arch_oc_row(pulse, &onset, t_p[i], levels, radius, options);
         if let Some(p) = progress {
             p();
         }
         row
     });
-    let mut collapsed = Vec::with_capacity(t_p.len() * levels.len());
-    let mut runs = ArchRunCounts::default();
-    for (i, row) in rows.into_iter().enumerate() {
-        for (j, r) in row?.into_iter().enumerate() {
-            match r {
-                Ok(r) => {
-                    runs.add(&r, levels[j], t_p[i]);
-                    collapsed.push(r.collapsed);
-                }
-                Err(f) => {
-                    runs.failures.push(f);
-                    collapsed.push(false);
-                }
-            }
-        }
-    }
-    Ok(ArchOc {
+    let mut oc = ArchOc {
         pulse,
         shape: options.shape,
         radius,
         onset,
         gravity: sim.gravity,
-        t_p: t_p.to_vec(),
+        t_p: Vec::with_capacity(t_p.len()),
         levels: levels.to_vec(),
-        collapsed,
-        runs,
-    })
+        collapsed: Vec::with_capacity(t_p.len() * levels.len()),
+        runs: ArchRunCounts::default(),
+    };
+    for (i, row) in rows.into_iter().enumerate() {
+        oc.push_row(t_p[i], row?);
+    }
+    Ok(oc)
+}
+
+/// One row of an arch OC: the runs at `t_p` over `levels`, in order (a run the loop driver
+/// failed on: its failure). Every row is independent of the others ([`ArchOc::push_row`]
+/// assembles them).
+pub fn arch_oc_row(
+    pulse: PulseShape,
+    onset: &ArchOnset,
+    t_p: f64,
+    levels: &[f64],
+    radius: f64,
+    options: &ArchSweepOptions,
+) -> Result<Vec<Result<ArchRun, ArchFailure>>, SpectraError> {
+    levels
+        .iter()
+        .map(
+            |&l| match arch_pulse_run(pulse, onset, l, t_p, radius, options) {
+                Ok(r) => Ok(Ok(r)),
+                Err(SpectraError::Loop(message)) => Ok(Err(ArchFailure {
+                    level: l,
+                    radius: t_p,
+                    message,
+                })),
+                Err(e) => Err(e),
+            },
+        )
+        .collect()
 }

@@ -62,7 +62,7 @@ pub use arch_design::{
     arch_suite, candidate_rules, characteristic_arch_oas, fit_factor, same_arch, score_t1,
     ArchCharacteristic, ArchRecord, ArchRule, NamedRule, RuleScore,
 };
-pub use arch_oc::{arch_overturning_curve, arch_pulse_run, ArchOc};
+pub use arch_oc::{arch_oc_row, arch_overturning_curve, arch_pulse_run, ArchOc};
 pub use band::{t1_band, Perturbation, T1Band};
 pub use hull::TransformedHull;
 pub use oas::{
