@@ -1,13 +1,14 @@
 //! What the driver asks of a chain of rigid bodies (SPEC §1, §9): its equations of motion, the
 //! checks at a state, its energies, and the two models. The stepper and every event transition
 //! go through these traits, never through column code. The column's implementation is
-//! `ColumnDynamics` (`dynamics.rs`) with the crate's models. A closed loop (an arch or a capped
-//! colonnade) implements them on [`crate::chain`]'s geometry with the models of
-//! [`crate::model::constrained`]: `assemble` then also builds the closure `G` and `Ġ v`, `impact`
-//! takes the set of joints closing at once, and `check`, without a reaction test in a loop, takes
-//! its opening margin from the opening model (e.g. the load power of the best admissible
-//! mechanism, which crosses zero where the loop starts to move) — without touching the
-//! integrators or the transitions.
+//! `ColumnDynamics` (`dynamics.rs`) with the crate's models. Closed loops (an arch, a capped
+//! colonnade) do not implement them yet: their driver (`closed/`) has its own fixed-step loop
+//! on [`crate::chain`]'s geometry and the models of [`crate::model::constrained`]. To go through
+//! these traits, `assemble` would also build the closure `G` and `Ġ v`, `impact` would take the
+//! set of joints closing at once, and `check`, without a reaction test in a loop, would take its
+//! opening margin from the opening model (e.g. the load power of the best admissible mechanism,
+//! which crosses zero where the loop starts to move); the position and rate projections onto
+//! the closure after every step have no counterpart in the column's loop yet.
 
 use super::DriverError;
 use crate::error::{ErrorKind, RockingError};
