@@ -14,10 +14,10 @@ use pyo3::types::PyInt;
 use rocking::driver::{EventLocator, Integrator};
 use rocking::ground::records::{self, PlainFormat, Record as CoreRecord};
 use rocking::model::single_block::EquivalentBlock;
-use rocking::spectra::report::{OasReport, OcReport, SuiteReport, SummaryReport, T1Row};
+use rocking::spectra::report::{OasReport, OcReport, SuiteReport, SummaryReport, T1Row, TpRow};
 use rocking::spectra::{
     self, column_of_size, linear_levels, log_sizes, Oas, OasLevel, OasOptions, Oc, PulseShape,
-    SizeSearch, SpectraError, SweepOptions, SINE_FULLNESS,
+    SizeSearch, SpectraError, SweepOptions,
 };
 use rocking::validate;
 
@@ -338,20 +338,6 @@ pub fn _simplified_oas<'py>(
     ))
 }
 
-/// One record's row of `rocking tp --json` (cli/src/commands/tp.rs); `file` is None for a
-/// `Record`.
-#[derive(serde::Serialize)]
-struct TpRow {
-    record: String,
-    file: Option<String>,
-    a_max: f64,
-    i_max: f64,
-    lobe_start: f64,
-    lobe_end: f64,
-    fullness: f64,
-    t_p: f64,
-}
-
 /// `tp --json`'s row of each record (a `Record` or a path), in order: the replacement sine
 /// (Eq. 25).
 #[pyfunction]
@@ -365,16 +351,7 @@ pub fn _tp<'py>(py: Python<'py>, records: Vec<Bound<'py, PyAny>>) -> PyResult<Bo
                 record.name
             ))
         })?;
-        rows.push(TpRow {
-            record: record.name.clone(),
-            file,
-            a_max: s.a_max,
-            i_max: s.i_max,
-            lobe_start: s.lobe_start,
-            lobe_end: s.lobe_end,
-            fullness: SINE_FULLNESS,
-            t_p: s.t_p,
-        });
+        rows.push(TpRow::of(&record.name, file, &s));
     }
     to_python(py, &rows)
 }

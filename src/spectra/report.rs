@@ -324,6 +324,41 @@ impl T1Row {
     }
 }
 
+/// One record's row of `rocking tp --json` (and the Python package's `tp`): the replacement sine
+/// of Eq. 25 (`file` is `None` for a record given as data).
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct TpRow {
+    pub record: String,
+    pub file: Option<String>,
+    /// Peak absolute ground acceleration [m/s²].
+    pub a_max: f64,
+    /// Largest single-lobe impulse ∫|a| dt between two zero crossings [m/s].
+    pub i_max: f64,
+    /// Start and end of that lobe [s].
+    pub lobe_start: f64,
+    pub lobe_end: f64,
+    /// The fullness used, 2/π ([`super::SINE_FULLNESS`]).
+    pub fullness: f64,
+    /// `t_p = I_max / (F a_max)` [s].
+    pub t_p: f64,
+}
+
+impl TpRow {
+    /// The row of `record` (named `name`, read from `file`) with replacement sine `s`.
+    pub fn of(name: &str, file: Option<String>, s: &super::ReplacementSine) -> TpRow {
+        TpRow {
+            record: name.to_string(),
+            file,
+            a_max: s.a_max,
+            i_max: s.i_max,
+            lobe_start: s.lobe_start,
+            lobe_end: s.lobe_end,
+            fullness: super::SINE_FULLNESS,
+            t_p: s.t_p,
+        }
+    }
+}
+
 /// One grid point of an overturning curve.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct OcPointReport {

@@ -4,8 +4,8 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use rocking::spectra::{replacement_sine, SINE_FULLNESS};
-use serde::Serialize;
+use rocking::spectra::replacement_sine;
+use rocking::spectra::report::TpRow;
 
 use crate::output::print_json;
 
@@ -20,24 +20,6 @@ pub struct TpArgs {
     pub json: bool,
 }
 
-/// One record's row of `tp --json`.
-#[derive(Serialize)]
-struct Row {
-    record: String,
-    file: String,
-    /// Peak absolute ground acceleration [m/s²].
-    a_max: f64,
-    /// Largest single-lobe impulse ∫|a| dt between two zero crossings [m/s].
-    i_max: f64,
-    /// Start and end of that lobe [s].
-    lobe_start: f64,
-    lobe_end: f64,
-    /// The fullness used, 2/π.
-    fullness: f64,
-    /// t_p = I_max / (F a_max) [s].
-    t_p: f64,
-}
-
 /// Runs the command.
 pub fn run(a: &TpArgs) -> Result<(), String> {
     let mut rows = Vec::new();
@@ -45,16 +27,7 @@ pub fn run(a: &TpArgs) -> Result<(), String> {
         let record = super::sweep::read(f)?;
         let s = replacement_sine(&record)
             .ok_or_else(|| format!("{}: the record is zero everywhere", f.display()))?;
-        rows.push(Row {
-            record: record.name.clone(),
-            file: f.display().to_string(),
-            a_max: s.a_max,
-            i_max: s.i_max,
-            lobe_start: s.lobe_start,
-            lobe_end: s.lobe_end,
-            fullness: SINE_FULLNESS,
-            t_p: s.t_p,
-        });
+        rows.push(TpRow::of(&record.name, Some(f.display().to_string()), &s));
     }
     if a.json {
         print_json(&rows)?;
