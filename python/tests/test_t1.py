@@ -83,8 +83,8 @@ def test_progress_counts_the_levels_of_each_spectrum(root):
 
 
 def test_ctrl_c_stops_the_band(root):
-    """SIGINT once the nominal OAS is done: KeyboardInterrupt from the next spectrum's sweep, and
-    no spectrum after it starts."""
+    """SIGINT once the nominal OAS is done: KeyboardInterrupt (from the callback, or from the next
+    spectrum's sweep, which then stops), and no other spectrum finishes."""
     seen = []
 
     def progress(done, total):
