@@ -202,9 +202,27 @@ def oas(
     """The OAS of a record (thesis 5.2), as ``rocking oas --json``; parallel, Ctrl-C stops it."""
 
 @overload
-def t1(records: Union[Record, Path], **options: Any) -> Dict[str, Any]: ...
+def t1(
+    records: Union[Record, Path],
+    *,
+    band: bool = False,
+    converge_step: Optional[float] = None,
+    converge_halvings: int = 4,
+    **options: Any,
+) -> Dict[str, Any]:
+    """t1 (Eq. 20) of a record, as ``rocking t1 --json`` (``band``: ``--band``; ``converge_step``,
+    ``converge_halvings``: ``--converge-step``, ``--converge-halvings``; not both); the other
+    options are :func:`oas`'s."""
+
 @overload
-def t1(records: Sequence[Union[Record, Path]], **options: Any) -> List[Dict[str, Any]]: ...
+def t1(
+    records: Sequence[Union[Record, Path]],
+    *,
+    band: bool = False,
+    converge_step: Optional[float] = None,
+    converge_halvings: int = 4,
+    **options: Any,
+) -> List[Dict[str, Any]]: ...
 def oc(
     shape: str = "half-sine",
     *,

@@ -139,14 +139,18 @@ def _count(x):
 
 
 #: The arguments that are counts.
-_INTEGRAL = ("blocks", "impacts", "threads", "voussoirs", "radius_n", "level_n", "ptp_n")
+_INTEGRAL = ("blocks", "impacts", "threads", "voussoirs", "radius_n", "level_n", "ptp_n", "converge_halvings")
+
+#: The arguments that may be None.
+_OPTIONAL = ("tail", "threads", "converge_step")
 
 
 def _numbers(**args):
-    """A TypeError naming the argument that is not a number (``None`` allowed for ``tail`` and
-    ``threads``): the extension's own message names it on some Python versions only."""
+    """A TypeError naming the argument that is not a number (``None`` allowed for ``tail``,
+    ``threads`` and ``converge_step``): the extension's own message names it on some Python
+    versions only."""
     for name, v in args.items():
-        if v is None and name in ("tail", "threads"):
+        if v is None and name in _OPTIONAL:
             continue
         integral = name in _INTEGRAL
         kind = numbers.Integral if integral else numbers.Real
@@ -198,7 +202,7 @@ oas.__doc__ = oas.__doc__.replace("{simulation}", _SIMULATION_DOC.strip())
 
 def t1(records, *, slenderness=12.0, levels=80, level_max=10.0, sizes=120, size_min=0.1, size_max=1000.0,
        blocks=1, bisection=False, impacts=1, dt_factor=1.0, tail=None, hermite=False, rk4=False,
-       full_runs=False, threads=None, progress=None):
+       full_runs=False, band=False, converge_step=None, converge_halvings=4, threads=None, progress=None):
     """The replacement impulse duration ``t_1 = i_cr / f_min`` (thesis Eq. 20) of a record, with
     the inclined line of Eq. 28 (``t1_prime``, ``beta``) and ``f_min``, each from the record's OAS
     (same options as :func:`oas`), as ``rocking t1 RECORD --json``.
@@ -207,12 +211,34 @@ def t1(records, *, slenderness=12.0, levels=80, level_max=10.0, sizes=120, size_
     ``t1_prime``, ``beta``, ``f_min``, ``level_at_f_min``, ``size_at_f_min``, ``simulations``,
     ``seconds``, ``file`` (the path; None for a Record), ``slenderness``, ``blocks``,
     ``dt_factor``, ``search``, ``t_p`` — the replacement sine duration of Eq. 25); a list of them:
-    a list of dicts, in order."""
+    a list of dicts, in order.
+
+    How far to trust ``t1`` (``docs/t1-accuracy.md``), as ``rocking t1 --band`` and
+    ``--converge-step``; one or the other:
+
+    - ``band=True``: the OAS again with half the time step, with the level and the size grids
+      shifted by half a cell and with the other event locator (five OAS per record); adds
+      ``t1_range`` ``[min, max]``, ``t1_conservative`` (``i_cr / f_min`` of the envelope of the
+      five spectra) and ``band`` (each one's ``t1``, by name; None where nothing overturned).
+    - ``converge_step=TOL`` (e.g. 0.1): the OAS again at half the step, and again, until two
+      successive steps give ``t1`` within TOL (``max/min − 1``) or after ``converge_halvings``
+      halvings (≥ 1); the row is the finest step's (its ``dt_factor`` too), with ``t1_steps``
+      (``[dt factor, t1]`` of each step) and ``step_converged``. Two OAS per record at least.
+
+    {simulation}
+
+    ``progress`` counts the levels of the OAS under way: with several records, ``band`` or
+    ``converge_step`` it starts again with each spectrum."""
+    _numbers(converge_step=converge_step, converge_halvings=converge_halvings)
     items, single = _paths(records)
     rows = _rocking._t1(items, *_grid_args(slenderness, levels, level_max, sizes, size_min, size_max, blocks,
                                            bisection, impacts, dt_factor, tail, hermite, rk4, full_runs, threads,
-                                           progress))
+                                           progress),
+                        bool(band), None if converge_step is None else float(converge_step), int(converge_halvings))
     return rows[0] if single else rows
+
+
+t1.__doc__ = t1.__doc__.replace("{simulation}", _SIMULATION_DOC.strip())
 
 
 def oc(shape="half-sine", *, blocks=1, slenderness=12.0, size=1.0, ptp=40, ptp_min=0.1, ptp_max=10.0, levels=40,

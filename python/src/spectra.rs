@@ -191,9 +191,14 @@ pub fn _oas<'py>(
     ))
 }
 
-/// `t1 --json`'s row of each record (a `Record` or a path), in order.
+/// `t1 --json`'s row of each record (a `Record` or a path), in order. `band`: `t1 --band` (the
+/// library's `t1_band`, five OAS); `converge_step`: `t1 --converge-step TOL --converge-halvings
+/// N` (`t1_step_converged`, the row the finest step's). Each OAS of either runs on the runner,
+/// one level per unit of work, as `compute_oas`; the library composes them, so the rows are the
+/// CLI's.
 #[pyfunction]
-#[pyo3(signature = (records, grid, simulation, threads, progress))]
+#[pyo3(signature = (records, grid, simulation, threads, progress, band = false, converge_step = None, converge_halvings = 4))]
+#[allow(clippy::too_many_arguments)]
 pub fn _t1<'py>(
     py: Python<'py>,
     records: Vec<Bound<'py, PyAny>>,
@@ -201,20 +206,57 @@ pub fn _t1<'py>(
     simulation: Simulation,
     threads: Option<usize>,
     progress: Option<Py<PyAny>>,
+    band: bool,
+    converge_step: Option<f64>,
+    converge_halvings: i64,
 ) -> PyResult<Bound<'py, PyAny>> {
     let o = grid.options(&simulation)?;
+    // The CLI's `conflicts_with`, then the library's checks of the tolerance and the halvings
+    // (`check_step_convergence`) with the arguments' names.
+    if band && converge_step.is_some() {
+        return Err(value_error(
+            "band and converge_step: give one (the band is five OAS at the given step; \
+             converge_step halves the step until t1 converges)",
+        ));
+    }
+    let halvings = usize::try_from(converge_halvings)
+        .ok()
+        .filter(|&n| n >= 1)
+        .ok_or_else(|| {
+            value_error(format!(
+                "converge_halvings = {converge_halvings}: must be >= 1"
+            ))
+        })?;
+    if let Some(tol) = converge_step {
+        validate::non_negative("converge_step", tol).map_err(value_error)?;
+        spectra::check_step_convergence(tol, halvings).map_err(spectra_error)?;
+    }
     let runner = Runner { threads, progress };
     let mut rows = Vec::with_capacity(records.len());
     for r in &records {
         let (record, file) = record_of(r)?;
         let t0 = Instant::now();
-        let result = compute_oas(py, &record, &o, &runner)?;
-        rows.push(T1Row {
+        let spectrum = |x: &OasOptions| compute_oas(py, &record, x, &runner);
+        let (mut t1_band, mut steps) = (None, None);
+        let result = if band {
+            let (r, b) = spectra::t1_band_with(&o, spectrum)?;
+            t1_band = Some(b);
+            r
+        } else if let Some(tol) = converge_step {
+            let (r, c) = spectra::t1_step_converged_with(&o, tol, halvings, spectrum)?;
+            steps = Some(c);
+            r
+        } else {
+            spectrum(&o)?
+        };
+        // The dt factor of the spectrum in the row (the finest step's with converge_step).
+        let row_factor = steps.as_ref().map_or(1.0, |c| c.factor());
+        let mut row = T1Row {
             summary: SummaryReport::of(&result, t0.elapsed().as_secs_f64()),
             file,
             slenderness: o.slenderness,
             blocks: o.n_blocks,
-            dt_factor: simulation.dt_factor,
+            dt_factor: simulation.dt_factor * row_factor,
             search: o.search,
             t_p: spectra::replacement_sine(&record).map(|s| s.t_p),
             procedure: None,
@@ -223,7 +265,14 @@ pub fn _t1<'py>(
             band: None,
             t1_steps: None,
             step_converged: None,
-        });
+        };
+        if let Some(b) = &t1_band {
+            row.set_band(b);
+        }
+        if let Some(c) = &steps {
+            row.set_steps(c, simulation.dt_factor);
+        }
+        rows.push(row);
     }
     to_python(py, &rows)
 }

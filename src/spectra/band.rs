@@ -125,9 +125,19 @@ pub fn t1_band(
     options: &OasOptions,
     progress: Option<Progress<'_>>,
 ) -> Result<(Oas, T1Band), SpectraError> {
+    t1_band_with(options, |o| oas(record, o, progress))
+}
+
+/// [`t1_band`] with each spectrum computed by `spectrum` (the OAS of the record under the
+/// options given, as [`oas`] computes it): for a caller that runs the OAS its own way (the
+/// Python package, on its interruptible runner), with the same spectra and the same band.
+pub fn t1_band_with<E>(
+    options: &OasOptions,
+    mut spectrum: impl FnMut(&OasOptions) -> Result<Oas, E>,
+) -> Result<(Oas, T1Band), E> {
     let mut members = Vec::with_capacity(Perturbation::ALL.len());
     for p in Perturbation::ALL {
-        members.push((p, oas(record, &p.apply(options), progress)?));
+        members.push((p, spectrum(&p.apply(options))?));
     }
     let band = T1Band::of(&members);
     let nominal = members.swap_remove(0).1;

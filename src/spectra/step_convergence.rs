@@ -51,6 +51,14 @@ pub fn t1_step_converged(
     max_halvings: usize,
     progress: Option<Progress<'_>>,
 ) -> Result<(Oas, StepConvergence), SpectraError> {
+    check_step_convergence(tolerance, max_halvings)?;
+    t1_step_converged_with(options, tolerance, max_halvings, |o| {
+        oas(record, o, progress)
+    })
+}
+
+/// The checks of [`t1_step_converged`]'s `tolerance` (finite, ≥ 0) and `max_halvings` (≥ 1).
+pub fn check_step_convergence(tolerance: f64, max_halvings: usize) -> Result<(), SpectraError> {
     if !(tolerance >= 0.0 && tolerance.is_finite()) {
         return Err(SpectraError::InvalidOption {
             field: "step_tolerance",
@@ -63,27 +71,41 @@ pub fn t1_step_converged(
             reason: "0 (must be at least 1)".to_string(),
         });
     }
+    Ok(())
+}
+
+/// [`t1_step_converged`] with each spectrum computed by `spectrum` (the OAS of the record under
+/// the options given, as [`oas`] computes it): for a caller that runs the OAS its own way (the
+/// Python package, on its interruptible runner), with the same spectra and the same history.
+/// The caller checks `tolerance` and `max_halvings` first ([`check_step_convergence`]; with
+/// `max_halvings` 0 this computes the one spectrum, not converged).
+pub fn t1_step_converged_with<E>(
+    options: &OasOptions,
+    tolerance: f64,
+    max_halvings: usize,
+    mut spectrum: impl FnMut(&OasOptions) -> Result<Oas, E>,
+) -> Result<(Oas, StepConvergence), E> {
     let mut o = options.clone();
     let mut factor = 1.0;
-    let mut spectrum = oas(record, &o, progress)?;
-    let mut steps = vec![(factor, spectrum.t1())];
-    let mut simulations = spectrum.simulations();
+    let mut current = spectrum(&o)?;
+    let mut steps = vec![(factor, current.t1())];
+    let mut simulations = current.simulations();
     let mut converged = false;
     for _ in 0..max_halvings {
         factor *= 0.5;
         o.sweep.time_step = o.sweep.time_step.scaled(0.5);
-        let finer = oas(record, &o, progress)?;
+        let finer = spectrum(&o)?;
         simulations += finer.simulations();
-        let previous = spectrum.t1();
-        spectrum = finer;
-        steps.push((factor, spectrum.t1()));
-        if t1_agree(previous, spectrum.t1(), tolerance) {
+        let previous = current.t1();
+        current = finer;
+        steps.push((factor, current.t1()));
+        if t1_agree(previous, current.t1(), tolerance) {
             converged = true;
             break;
         }
     }
     Ok((
-        spectrum,
+        current,
         StepConvergence {
             steps,
             converged,

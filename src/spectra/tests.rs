@@ -291,6 +291,32 @@ fn t1_step_converged_stops_where_two_steps_agree() {
     assert!(t1_step_converged(&record, &grid, 0.1, 0, None).is_err());
 }
 
+/// The `_with` forms ask their caller for each spectrum, in order, and stop at its first error:
+/// the nominal options first, then the perturbations (the band) or the halved steps.
+#[test]
+fn t1_band_and_step_convergence_with_a_callers_spectra() {
+    let grid = small_grid();
+    let mut asked: Vec<OasOptions> = Vec::new();
+    let r = t1_band_with(&grid, |o| {
+        asked.push(o.clone());
+        Err::<Oas, &str>("stop")
+    });
+    assert_eq!(r.unwrap_err(), "stop");
+    assert_eq!(asked.len(), 1);
+    assert_eq!(asked[0].levels, grid.levels);
+    let mut asked = 0;
+    let r = t1_step_converged_with(&grid, 0.1, 4, |_| {
+        asked += 1;
+        Err::<Oas, &str>("stop")
+    });
+    assert_eq!(r.unwrap_err(), "stop");
+    assert_eq!(asked, 1);
+    assert!(check_step_convergence(0.1, 1).is_ok());
+    assert!(check_step_convergence(-0.1, 1).is_err());
+    assert!(check_step_convergence(f64::INFINITY, 1).is_err());
+    assert!(check_step_convergence(0.0, 0).is_err());
+}
+
 #[test]
 fn t1_agree_counts_no_overturning_as_agreement_only_with_itself() {
     assert!(t1_agree(None, None, 0.0));
