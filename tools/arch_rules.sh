@@ -13,13 +13,15 @@ $R arch suite docs/data/arch-t012/oas-RSN*.json --name "far field (44), t/R 0.12
 $R arch suite docs/data/arch-t012-nearfield/oas-RSN*.json --name "near field (56), t/R 0.12" --svg docs/figures/arch-suite-nearfield-t012 > docs/data/arch-rules/suite-nearfield-N8-t012.txt
 $R arch suite docs/data/arch-t011/oas-RSN*.json --name "far field (44), t/R 0.11" --svg docs/figures/arch-suite-farfield-t011 > docs/data/arch-rules/suite-farfield-N8-t011.txt
 $R arch suite docs/data/arch-t011-nearfield/oas-RSN*.json --name "near field (56), t/R 0.11" --svg docs/figures/arch-suite-nearfield-t011 > docs/data/arch-rules/suite-nearfield-N8-t011.txt
+$R arch suite docs/data/arch-t0105/oas-RSN*.json --name "far field (44), t/R 0.105" --svg docs/figures/arch-suite-farfield-t0105 > docs/data/arch-rules/suite-farfield-N8-t0105.txt
+$R arch suite docs/data/arch-t0105-nearfield/oas-RSN*.json --name "near field (56), t/R 0.105" --svg docs/figures/arch-suite-nearfield-t0105 > docs/data/arch-rules/suite-nearfield-N8-t0105.txt
 $R arch suite docs/data/arch6/oas-RSN*.json --name "far field (44), 6 voussoirs" --svg docs/figures/arch-suite-farfield-N6 > docs/data/arch-rules/suite-farfield-N6.txt
 $R arch suite docs/data/arch6-nearfield/oas-RSN*.json --name "near field (56), 6 voussoirs" --svg docs/figures/arch-suite-nearfield-N6 > docs/data/arch-rules/suite-nearfield-N6.txt
 $R arch suite docs/data/arch-e150/oas-RSN*.json --name "far field (44), embrace 150°" --svg docs/figures/arch-suite-farfield-e150 > docs/data/arch-rules/suite-farfield-N8-e150.txt
 $R arch suite docs/data/arch-e150-nearfield/oas-RSN*.json --name "near field (56), embrace 150°" --svg docs/figures/arch-suite-nearfield-e150 > docs/data/arch-rules/suite-nearfield-N8-e150.txt
 # The fit set: far field, 8 voussoirs, t/R 0.15. The test sets, out of sample: other records
-# (near field) or other arches (20 and 6 voussoirs; t/R 0.20, 0.12 and 0.11; embrace 150°), where a fixed t1 is
-# not scored.
+# (near field) or other arches (20 and 6 voussoirs; t/R 0.20, 0.12, 0.11 and 0.105; embrace 150°), where a
+# fixed t1 is not scored.
 args=(--fit docs/data/arch/oas-RSN*.json
   --test docs/data/arch-nearfield/oas-RSN*.json docs/data/arch20/oas-RSN*.json
          docs/data/arch20-nearfield/oas-RSN*.json docs/data/arch-t020/oas-RSN*.json
@@ -27,8 +29,19 @@ args=(--fit docs/data/arch/oas-RSN*.json
          docs/data/arch-t012-nearfield/oas-RSN*.json docs/data/arch-t011/oas-RSN*.json
          docs/data/arch-t011-nearfield/oas-RSN*.json docs/data/arch6/oas-RSN*.json
          docs/data/arch6-nearfield/oas-RSN*.json docs/data/arch-e150/oas-RSN*.json
-         docs/data/arch-e150-nearfield/oas-RSN*.json
+         docs/data/arch-e150-nearfield/oas-RSN*.json docs/data/arch-t0105/oas-RSN*.json
+         docs/data/arch-t0105-nearfield/oas-RSN*.json
   --tp docs/data/t1-farfield.json --tp docs/data/t1-nearfield.json
-  --names "far field 8,near field 8,far field 20,near field 20,far field 8 t/R 0.20,near field 8 t/R 0.20,far field 8 t/R 0.12,near field 8 t/R 0.12,far field 8 t/R 0.11,near field 8 t/R 0.11,far field 6,near field 6,far field 8 embrace 150,near field 8 embrace 150")
+  --names "far field 8,near field 8,far field 20,near field 20,far field 8 t/R 0.20,near field 8 t/R 0.20,far field 8 t/R 0.12,near field 8 t/R 0.12,far field 8 t/R 0.11,near field 8 t/R 0.11,far field 6,near field 6,far field 8 embrace 150,near field 8 embrace 150,far field 8 t/R 0.105,near field 8 t/R 0.105")
 $R arch rules "${args[@]}" --svg docs/figures/arch-rules.svg > docs/data/arch-rules/rules.txt
 $R arch rules "${args[@]}" --json > docs/data/arch-rules/rules.json
+# The figure draws nine set colours, then repeats them: the fit set and the sets computed after
+# t/R 0.12 (t/R 0.11 and 0.105, 6 voussoirs, embrace 150°) alone, nine sets.
+later=(--fit docs/data/arch/oas-RSN*.json
+  --test docs/data/arch-t011/oas-RSN*.json docs/data/arch-t011-nearfield/oas-RSN*.json
+         docs/data/arch-t0105/oas-RSN*.json docs/data/arch-t0105-nearfield/oas-RSN*.json
+         docs/data/arch6/oas-RSN*.json docs/data/arch6-nearfield/oas-RSN*.json
+         docs/data/arch-e150/oas-RSN*.json docs/data/arch-e150-nearfield/oas-RSN*.json
+  --tp docs/data/t1-farfield.json --tp docs/data/t1-nearfield.json
+  --names "far field 8,far field 8 t/R 0.11,near field 8 t/R 0.11,far field 8 t/R 0.105,near field 8 t/R 0.105,far field 6,near field 6,far field 8 embrace 150,near field 8 embrace 150")
+$R arch rules "${later[@]}" --svg docs/figures/arch-rules-later.svg > /dev/null
