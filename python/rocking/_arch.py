@@ -15,7 +15,7 @@ import os
 import numpy as np
 
 from . import _rocking
-from ._spectra import _numbers, _optional, _report_json
+from ._spectra import _SuiteResult, _numbers, _optional, _report_json
 
 _FAMILY_DOC = """
     The arch family (as the CLI's options): ``thickness_ratio`` t/R, ``embrace`` the angle of
@@ -190,7 +190,7 @@ def arch_oc(shape="half-sine", *, thickness_ratio=0.15, embrace=180.0, voussoirs
 arch_oc.__doc__ = arch_oc.__doc__.replace("{family}", _FAMILY_DOC.strip())
 
 
-class ArchSuite:
+class ArchSuite(_SuiteResult):
     """The suite procedure on arch OAS, as ``rocking arch suite --json``: ``records`` one dict per
     record (``record``, its arch ``t1``, ``f_min``, ``level_at_f_min``, ``size_at_f_min``,
     ``block_t1`` — the single-block ``t_1`` its OAS was checked with, or None), by name;
@@ -201,6 +201,8 @@ class ArchSuite:
     that collapse, ratios); ``block_rule``: each record's single-block ``t_1`` scored against its
     own arch OAS; ``name``, ``shape``, ``onset``. :meth:`to_dict` is the CLI's JSON."""
 
+    _plot = "arch_suite"
+
     def __init__(self, raw):
         self._raw = raw
         self.name = raw["name"]
@@ -209,26 +211,6 @@ class ArchSuite:
         self.records = raw["records"]
         self.characteristic = [dict(c, oas=ArchOas(c["oas"])) for c in raw["characteristic"]]
         self.block_rule = raw["block_rule"]
-
-    @property
-    def design_t1(self):
-        """``{fractile: design t_1 (s) or None}``."""
-        return {c["fractile"]: c["design_t1"] for c in self.characteristic}
-
-    def to_dict(self):
-        """``rocking arch suite --json`` (a new dict)."""
-        return copy.deepcopy(self._raw)
-
-    def plot(self, against="p", ax=None):
-        """The characteristic OAS of each fractile against ``p`` or ``f``. matplotlib (``pip
-        install './python[plot]'``). Returns the axes."""
-        from . import plot
-
-        return plot.arch_suite(self, against=against, ax=ax)
-
-    def __repr__(self):
-        t1 = ", ".join(f"{q}: {'-' if t is None else f'{t:.4f} s'}" for q, t in self.design_t1.items())
-        return f"ArchSuite({self.name!r}: {len(self.records)} records, design t1 {{{t1}}})"
 
 
 def arch_suite(spectra, *, name="arch suite", fractiles=(0.5, 0.84)):

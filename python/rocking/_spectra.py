@@ -284,7 +284,34 @@ def tp(records):
     return rows[0] if single else rows
 
 
-class Suite:
+class _SuiteResult:
+    """What a suite result (:class:`Suite`, :class:`rocking.ArchSuite`) shares: its design ``t_1``
+    per fractile, the CLI's JSON, the plot and the repr. A subclass sets ``_raw``, ``name``,
+    ``records``, ``characteristic``, ``_command`` (the CLI command) and ``_plot`` (the name of
+    its function in :mod:`rocking.plot`)."""
+
+    @property
+    def design_t1(self):
+        """``{fractile: design t_1 (s) or None}``."""
+        return {c["fractile"]: c["design_t1"] for c in self.characteristic}
+
+    def to_dict(self):
+        """The JSON of the CLI's ``--json`` (a new dict)."""
+        return copy.deepcopy(self._raw)
+
+    def plot(self, against="p", ax=None):
+        """The characteristic OAS of each fractile against ``p`` or ``f`` (a column suite also
+        draws the records' OAS). matplotlib (``pip install './python[plot]'``). Returns the axes."""
+        from . import plot
+
+        return getattr(plot, self._plot)(self, against=against, ax=ax)
+
+    def __repr__(self):
+        t1 = ", ".join(f"{q}: {'-' if t is None else f'{t:.4f} s'}" for q, t in self.design_t1.items())
+        return f"{type(self).__name__}({self.name!r}: {len(self.records)} records, design t1 {{{t1}}})"
+
+
+class Suite(_SuiteResult):
     """The design curves of a record suite (thesis 5.3.1–5.3.2, Fig. 44, 47–49), as ``rocking
     suite --json``: ``records`` every record's :class:`Oas` (by name), ``characteristic`` one
     dict per fractile (``fractile``, ``design_t1`` — the suite's ``t_1 = i_cr / f_min`` of the
@@ -294,6 +321,8 @@ class Suite:
     normalised convex hulls of the transformed OAS, Fig. 49), ``own_parameters`` (the same check
     with each record's own ``t_1``, ``t_1'``, ``β``), ``seconds`` (the records' wall times).
     :meth:`to_dict` is the JSON of ``rocking suite --json``."""
+
+    _plot = "suite"
 
     def __init__(self, raw, records_i_cr, characteristic_i_cr):
         self._raw = raw
@@ -307,26 +336,6 @@ class Suite:
         self.hulls = raw["hulls"]
         self.own_parameters = raw["own_parameters"]
         self.seconds = raw["seconds"]
-
-    @property
-    def design_t1(self):
-        """``{fractile: design t_1 (s) or None}``."""
-        return {c["fractile"]: c["design_t1"] for c in self.characteristic}
-
-    def to_dict(self):
-        """``rocking suite --json`` (a new dict)."""
-        return copy.deepcopy(self._raw)
-
-    def plot(self, against="p", ax=None):
-        """The characteristic OAS of each fractile against ``p`` or ``f``, with the records' OAS. matplotlib (``pip
-        install './python[plot]'``). Returns the axes."""
-        from . import plot
-
-        return plot.suite(self, against=against, ax=ax)
-
-    def __repr__(self):
-        t1 = ", ".join(f"{q}: {'-' if t is None else f'{t:.4f} s'}" for q, t in self.design_t1.items())
-        return f"Suite({self.name!r}: {len(self.records)} records, design t1 {{{t1}}})"
 
 
 def _report_json(spectrum, cls, what):
