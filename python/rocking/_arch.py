@@ -15,7 +15,7 @@ import os
 import numpy as np
 
 from . import _rocking
-from ._spectra import _SuiteResult, _numbers, _optional, _report_json
+from ._spectra import _SuiteResult, _numbers, _optional, _report_json, _set_level_arrays
 
 _FAMILY_DOC = """
     The arch family (as the CLI's options): ``thickness_ratio`` t/R, ``embrace`` the angle of
@@ -67,15 +67,7 @@ class ArchOas(_ArchResult):
         self._family(raw)
         self.record = raw["record"]
         self.gravity = raw["gravity"]
-        self.sizes = np.array(raw["sizes"], dtype=float)
-        lv = raw["levels"]
-        self.levels = np.array([x["level"] for x in lv], dtype=float)
-        self.largest_unsafe = np.array([-1 if x["largest_unsafe"] is None else x["largest_unsafe"] for x in lv],
-                                       dtype=np.int64)
-        self.size = np.array([_optional(x["size"]) for x in lv], dtype=float)
-        self.p = np.array([_optional(x["p"]) for x in lv], dtype=float)
-        self.f = np.array([_optional(x["f"]) for x in lv], dtype=float)
-        self.simulations = np.array([x["simulations"] for x in lv], dtype=np.int64)
+        _set_level_arrays(self, raw)
         self.t1 = raw["t1"]
         self.f_min = raw["f_min"]
         self.level_at_f_min = raw["level_at_f_min"]

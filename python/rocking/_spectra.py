@@ -28,6 +28,21 @@ def _optional(v):
     return float("nan") if v is None else v
 
 
+def _set_level_arrays(result, raw):
+    """The per-level arrays an OAS result (:class:`Oas`, :class:`rocking.ArchOas`) exposes, from
+    its JSON: ``sizes``, ``levels``, ``largest_unsafe`` (-1: none), ``size``, ``p``, ``f`` (NaN:
+    none), ``simulations``."""
+    result.sizes = np.array(raw["sizes"], dtype=float)
+    lv = raw["levels"]
+    result.levels = np.array([x["level"] for x in lv], dtype=float)
+    result.largest_unsafe = np.array([-1 if x["largest_unsafe"] is None else x["largest_unsafe"] for x in lv],
+                                     dtype=np.int64)
+    result.size = np.array([_optional(x["size"]) for x in lv], dtype=float)
+    result.p = np.array([_optional(x["p"]) for x in lv], dtype=float)
+    result.f = np.array([_optional(x["f"]) for x in lv], dtype=float)
+    result.simulations = np.array([x["simulations"] for x in lv], dtype=np.int64)
+
+
 class Oas:
     """An overturning acceleration spectrum (thesis Fig. 36, 37, 43): for each level
     ``a_p / a_p,min``, the largest size ``R`` of the grid that the scaled record overturns.
@@ -51,15 +66,7 @@ class Oas:
         self.search = raw["search"]
         self.gravity = raw["gravity"]
         self.i_cr = i_cr
-        self.sizes = np.array(raw["sizes"], dtype=float)
-        lv = raw["levels"]
-        self.levels = np.array([x["level"] for x in lv], dtype=float)
-        self.largest_unsafe = np.array([-1 if x["largest_unsafe"] is None else x["largest_unsafe"] for x in lv],
-                                       dtype=np.int64)
-        self.size = np.array([_optional(x["size"]) for x in lv], dtype=float)
-        self.p = np.array([_optional(x["p"]) for x in lv], dtype=float)
-        self.f = np.array([_optional(x["f"]) for x in lv], dtype=float)
-        self.simulations = np.array([x["simulations"] for x in lv], dtype=np.int64)
+        _set_level_arrays(self, raw)
         self.summary = raw["summary"]
         self.conservative = raw["conservative"]
 
