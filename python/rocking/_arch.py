@@ -15,7 +15,8 @@ import os
 import numpy as np
 
 from . import _rocking
-from ._spectra import _SuiteResult, _numbers, _optional, _report_json, _set_level_arrays
+from ._spectra import (_SuiteResult, _numbers, _oc_flags, _report_json, _set_level_arrays,
+                       _set_oc_grid)
 
 _FAMILY_DOC = """
     The arch family (as the CLI's options): ``thickness_ratio`` t/R, ``embrace`` the angle of
@@ -110,14 +111,8 @@ class ArchOc(_ArchResult):
         self.pulse = raw["pulse"]
         self.radius = raw["radius"]
         self.p = raw["p"]
-        env = raw["envelope"]
-        self.p_tp = np.array([e["p_tp"] for e in env], dtype=float)
-        self.envelope = np.array([_optional(e["level"]) for e in env], dtype=float)
-        rows, points = len(env), raw["points"]
-        cols = len(points) // rows if rows else 0
-        self.t_p = np.array([points[i * cols]["t_p"] for i in range(rows)], dtype=float) if cols else self.p_tp / self.p
-        self.levels = np.array([q["level"] for q in points[:cols]], dtype=float)
-        self.collapses = np.array([q["collapses"] for q in points], dtype=bool).reshape(rows, cols)
+        columns = _set_oc_grid(self, raw)
+        self.collapses = _oc_flags(raw, "collapses", len(columns))
 
     def plot(self, ax=None):
         """The points that collapse and the envelope against ``p t_p`` (log axis), as ``rocking

@@ -99,6 +99,26 @@ class Oas:
                 f"t1 = {'-' if t1 is None else f'{t1:.4f} s'}, {self.summary['simulations']} simulations)")
 
 
+def _set_oc_grid(result, raw):
+    """The grid an overturning curve result (:class:`Oc`, :class:`rocking.ArchOc`; ``p`` already
+    set) exposes, from its JSON: ``p_tp``, ``envelope`` (NaN: none), ``t_p`` per row and
+    ``levels`` per column. Returns the first row's points (one per column)."""
+    env = raw["envelope"]
+    result.p_tp = np.array([e["p_tp"] for e in env], dtype=float)
+    result.envelope = np.array([_optional(e["level"]) for e in env], dtype=float)
+    rows, points = len(env), raw["points"]
+    cols = len(points) // rows if rows else 0
+    result.t_p = (np.array([points[i * cols]["t_p"] for i in range(rows)], dtype=float) if cols
+                  else result.p_tp / result.p)
+    result.levels = np.array([q["level"] for q in points[:cols]], dtype=float)
+    return points[:cols]
+
+
+def _oc_flags(raw, key, cols):
+    """The boolean ``(rows, columns)`` array of the points' ``key`` (``unsafe``, ``collapses``)."""
+    return np.array([q[key] for q in raw["points"]], dtype=bool).reshape(len(raw["envelope"]), cols)
+
+
 class Oc:
     """An overturning curve (thesis Fig. 8, 33, 40): safe or unsafe on a grid of ``p t_p``
     (rows) × ``a_p / a_p,min`` (columns).
@@ -114,15 +134,9 @@ class Oc:
         self.blocks = raw["blocks"]
         self.p = raw["p"]
         self.a_p_min = raw["a_p_min"]
-        env = raw["envelope"]
-        self.p_tp = np.array([e["p_tp"] for e in env], dtype=float)
-        self.envelope = np.array([_optional(e["level"]) for e in env], dtype=float)
-        rows, points = len(env), raw["points"]
-        cols = len(points) // rows if rows else 0
-        self.t_p = np.array([points[i * cols]["t_p"] for i in range(rows)], dtype=float) if cols else self.p_tp / self.p
-        self.levels = np.array([q["level"] for q in points[:cols]], dtype=float)
-        self.a_p = np.array([q["a_p"] for q in points[:cols]], dtype=float)
-        self.unsafe = np.array([q["unsafe"] for q in points], dtype=bool).reshape(rows, cols)
+        columns = _set_oc_grid(self, raw)
+        self.a_p = np.array([q["a_p"] for q in columns], dtype=float)
+        self.unsafe = _oc_flags(raw, "unsafe", len(columns))
 
     def to_dict(self):
         """``rocking oc --json`` (a new dict)."""
