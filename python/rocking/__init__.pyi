@@ -250,7 +250,14 @@ def tp(records: Union[Record, Path]) -> Dict[str, Any]: ...
 @overload
 def tp(records: Union[List[Union[Record, Path]], Tuple[Union[Record, Path], ...]]) -> List[Dict[str, Any]]: ...
 
-class Suite:
+class _SuiteResult:
+    """What :class:`Suite` and :class:`ArchSuite` share."""
+    @property
+    def design_t1(self) -> Dict[float, Optional[float]]: ...
+    def to_dict(self) -> Dict[str, Any]: ...
+    def plot(self, against: Literal["p", "f"] = "p", ax: Any = None) -> Any: ...
+
+class Suite(_SuiteResult):
     """The design curves of a record suite (thesis 5.3.1-5.3.2), as ``rocking suite --json``."""
 
     name: str
@@ -261,10 +268,6 @@ class Suite:
     hulls: List[Dict[str, Any]]
     own_parameters: List[Dict[str, Any]]
     seconds: float
-    @property
-    def design_t1(self) -> Dict[float, Optional[float]]: ...
-    def to_dict(self) -> Dict[str, Any]: ...
-    def plot(self, against: Literal["p", "f"] = "p", ax: Any = None) -> Any: ...
 
 def suite(
     spectra: Sequence[Union[Oas, Mapping[str, Any]]],
@@ -367,7 +370,7 @@ def arch_oc(
 ) -> ArchOc:
     """The overturning curve of an arch under a pulse, as ``rocking arch oc --json``."""
 
-class ArchSuite:
+class ArchSuite(_SuiteResult):
     """The suite procedure on arch OAS, as ``rocking arch suite --json``."""
 
     name: str
@@ -378,10 +381,6 @@ class ArchSuite:
     """Per fractile: ``fractile``, ``design_t1``, ``f_min``, ``level_at_f_min``,
     ``size_at_f_min``, ``record_t1_fractile``, ``oas`` (an :class:`ArchOas`), ``check``."""
     block_rule: Dict[str, Any]
-    @property
-    def design_t1(self) -> Dict[float, Optional[float]]: ...
-    def to_dict(self) -> Dict[str, Any]: ...
-    def plot(self, against: Literal["p", "f"] = "p", ax: Any = None) -> Any: ...
 
 def arch_suite(
     spectra: Sequence[Union[ArchOas, Mapping[str, Any]]],

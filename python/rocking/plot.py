@@ -130,14 +130,21 @@ def oas(result, against="p", ax=None, fits=True):
     return ax
 
 
+def _oc_points(ax, result, flags, label):
+    """An overturning curve's flagged points (``flags``: rows × levels) and its envelope against
+    ``p t_p`` on a log axis (:func:`oc`, :func:`arch_oc`). Returns the axes."""
+    ax = _axes(ax)
+    rows, cols = np.nonzero(flags)
+    ax.plot(result.p_tp[rows], result.levels[cols], "o", markersize=3, label=label)
+    ax.plot(result.p_tp, result.envelope, "-", label="envelope")
+    ax.set_xscale("log")
+    return ax
+
+
 def oc(result, ax=None):
     """The unsafe points of a :class:`rocking.Oc` and its envelope (the lowest unsafe level at
     each ``p t_p``), against ``p t_p`` on a log axis (Fig. 33a)."""
-    ax = _axes(ax)
-    rows, cols = np.nonzero(result.unsafe)
-    ax.plot(result.p_tp[rows], result.levels[cols], "o", markersize=3, label="overturns")
-    ax.plot(result.p_tp, result.envelope, "-", label="envelope")
-    ax.set_xscale("log")
+    ax = _oc_points(ax, result, result.unsafe, "overturns")
     ax.set_xlabel("p t_p")
     ax.set_ylabel("a_p / a_p,min")
     ax.set_title(f"Overturning curve, {result.shape}, {result.blocks} block{'s' if result.blocks != 1 else ''}")
@@ -180,11 +187,7 @@ def arch_oas(result, against="p", ax=None, fits=True):
 def arch_oc(result, ax=None):
     """The points of a :class:`rocking.ArchOc` that collapse and its envelope (the lowest level
     that collapses at each ``p t_p``), against ``p t_p`` on a log axis."""
-    ax = _axes(ax)
-    rows, cols = np.nonzero(result.collapses)
-    ax.plot(result.p_tp[rows], result.levels[cols], "o", markersize=3, label="collapses")
-    ax.plot(result.p_tp, result.envelope, "-", label="envelope")
-    ax.set_xscale("log")
+    ax = _oc_points(ax, result, result.collapses, "collapses")
     ax.set_xlabel("p t_p (p of the onset mechanism)")
     ax.set_ylabel("a_p / (λ g)")
     ax.set_title(f"Arch OC, {result.pulse}, R = {result.radius} m, t/R = {result.thickness_ratio}, "
