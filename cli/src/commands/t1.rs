@@ -161,18 +161,13 @@ pub fn run(a: &T1Args) -> Result<(), String> {
             } else {
                 spectra::oas(&record, &o, Some(&tick)).map_err(|e| e.to_string())?
             };
-            // The options of the spectrum in the row (the finest step's with --converge-step).
+            // The row's spectrum is the finest step's with --converge-step.
             let row_factor = steps.as_ref().map_or(1.0, |c| c.factor());
-            let o_row = if row_factor == 1.0 {
-                o.clone()
-            } else {
-                let mut x = o.clone();
-                x.sweep.time_step = x.sweep.time_step.scaled(row_factor);
-                x
-            };
             let t_p = spectra::replacement_sine(&record).map(|s| s.t_p);
             let summary = Summary::of(&r, t0.elapsed().as_secs_f64());
             let governing = if a.explain {
+                let mut o_row = o.clone();
+                o_row.sweep.time_step = o_row.sweep.time_step.scaled(row_factor);
                 governing(&record, &summary, &o_row)?
             } else {
                 None
