@@ -83,7 +83,12 @@ fn t1_of_shared_records_is_unchanged() {
         "RSN1158_KOCAELI_DZC180",
         "RSN960_NORTHR_LOS000",
     ];
-    let mut args = vec!["t1".to_string(), "--json".to_string()];
+    // The step rule's t₁ (the default before it converged in the step).
+    let mut args = vec![
+        "t1".to_string(),
+        "--json".to_string(),
+        "--single-step".to_string(),
+    ];
     args.extend(
         names
             .iter()

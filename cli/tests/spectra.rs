@@ -102,6 +102,7 @@ fn t1_converge_step_reports_the_steps_and_the_finest_row() {
         "--json",
         "--dt-factor",
         &factor,
+        "--single-step",
     ];
     plain.extend(SMALL);
     let (ok, out, err) = rocking(&plain);
@@ -117,6 +118,48 @@ fn t1_converge_step_reports_the_steps_and_the_finest_row() {
     bad.extend(SMALL);
     let (ok, _, err) = rocking(&bad);
     assert!(!ok && err.contains("step_tolerance"), "{err}");
+}
+
+/// `rocking t1` converges t₁ in the step by default (`--converge-step 0.1 --converge-halvings
+/// 4`); `--single-step` is one OAS at the step rule, the first of the default's steps, and with
+/// `--band` the band is taken at the row's (converged) step, its nominal the row's t₁.
+#[test]
+fn t1_converges_in_the_step_by_default() {
+    let run = |extra: &[&str]| {
+        let mut args = vec!["t1", "examples/records/synthetic.AT2", "--json"];
+        args.extend(SMALL);
+        args.extend(extra);
+        let (ok, out, err) = rocking(&args);
+        assert!(ok, "{err}");
+        let mut v: serde_json::Value = serde_json::from_str(&out).unwrap();
+        let row = v.as_array_mut().unwrap().remove(0);
+        let mut row = row.as_object().unwrap().clone();
+        row.remove("seconds");
+        row
+    };
+    let default = run(&[]);
+    let explicit = run(&["--converge-step", "0.1", "--converge-halvings", "4"]);
+    assert_eq!(default, explicit);
+    let steps = default["t1_steps"].as_array().unwrap();
+    assert!(steps.len() >= 2, "{default:?}");
+    assert_eq!(default["dt_factor"], steps.last().unwrap()[0]);
+    let single = run(&["--single-step"]);
+    assert!(single.get("t1_steps").is_none(), "{single:?}");
+    assert!(single.get("step_converged").is_none(), "{single:?}");
+    assert_eq!(single["dt_factor"].as_f64(), Some(1.0));
+    assert_eq!(single["t1"], steps[0][1]);
+    let band = run(&["--band"]);
+    assert_eq!(band["t1"], default["t1"]);
+    assert_eq!(band["t1_steps"], default["t1_steps"]);
+    assert_eq!(band["band"]["nominal"], default["t1"]);
+    let (ok, _, err) = rocking(&[
+        "t1",
+        "examples/records/synthetic.AT2",
+        "--single-step",
+        "--converge-step",
+        "0.2",
+    ]);
+    assert!(!ok && err.contains("--single-step"), "{err}");
 }
 
 #[test]
@@ -175,24 +218,49 @@ fn spectra_bench_compares_with_full_runs() {
     assert!(text.contains("Speed-up of the energy-bound stop"));
 }
 
-/// `rocking bench spectra --dt-factor 2` on the bundled record: t₁ at both steps and the cost
-/// ratio; t₁ at the default step is the one `rocking t1` prints (golden: 0.2276 s).
+/// `rocking bench spectra --dt-factor 2 --converge-step 0.1` on the bundled record: t₁ at both
+/// steps and the cost ratio; t₁ at the default step is the one `rocking t1 --single-step` prints
+/// (golden: 0.2276 s); the converged t₁, its step and its cost, as `rocking t1` computes them.
 #[test]
-fn spectra_bench_prices_a_scaled_step() {
-    let (ok, stdout, err) = rocking(&["bench", "spectra", "--dt-factor", "2"]);
+fn spectra_bench_prices_a_scaled_and_a_converged_step() {
+    let (ok, stdout, err) = rocking(&[
+        "bench",
+        "spectra",
+        "--dt-factor",
+        "2",
+        "--converge-step",
+        "0.1",
+    ]);
     assert!(ok, "{err}");
     assert!(stdout.contains("Time step rule x 2:"), "{stdout}");
-    let row = stdout
+    let rows: Vec<Vec<&str>> = stdout
         .lines()
         .filter(|l| l.starts_with("| synthetic (bundled)"))
-        .nth(1)
-        .expect("a row of the scaled step");
-    let cells: Vec<&str> = row.split('|').map(str::trim).collect();
-    assert_eq!(cells[2], "0.2276", "{row}");
-    let t1: f64 = cells[3].parse().unwrap();
-    assert!(t1 > 0.05 && t1 < 2.0, "{row}");
-    let ratio: f64 = cells[7].parse().unwrap();
-    assert!(ratio > 0.0, "{row}");
+        .map(|l| l.split('|').map(str::trim).collect())
+        .collect();
+    let scaled = &rows[1];
+    assert_eq!(scaled[2], "0.2276", "{scaled:?}");
+    let t1: f64 = scaled[3].parse().unwrap();
+    assert!(t1 > 0.05 && t1 < 2.0, "{scaled:?}");
+    let ratio: f64 = scaled[7].parse().unwrap();
+    assert!(ratio > 0.0, "{scaled:?}");
+    assert!(stdout.contains("t1 converged in the step"), "{stdout}");
+    let converged = &rows[2];
+    assert_eq!(converged[2], "0.2276", "{converged:?}");
+    let (ok, out, err) = rocking(&["t1", "examples/records/synthetic.AT2", "--json"]);
+    assert!(ok, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(
+        converged[3],
+        format!("{:.4}", v[0]["t1"].as_f64().unwrap()),
+        "{converged:?}"
+    );
+    assert_eq!(
+        converged[4],
+        format!("x{}", v[0]["dt_factor"]),
+        "{converged:?}"
+    );
+    assert!(stdout.contains("CPU over the records"), "{stdout}");
 }
 
 /// An output without its wall-time lines (`"seconds": …`), which differ from run to run.
@@ -263,9 +331,17 @@ fn t1_shards_merge_bitwise_to_the_whole() {
         println!("../shared absent: the bundled record only");
         vec!["examples/records/synthetic.AT2".into(); 3]
     };
+    // The step rule's rows (what issue 10 found; one OAS each), then converged rows with their
+    // steps on a small grid.
     let mut args: Vec<&str> = records.iter().map(String::as_str).collect();
-    args.push("--json");
+    args.extend(["--json", "--single-step"]);
     let (whole, merged) = whole_and_merged("t1", &args, 2, "t1");
+    assert_eq!(whole, merged);
+    let mut args = vec!["examples/records/synthetic.AT2"; 3];
+    args.push("--json");
+    args.extend(SMALL);
+    let (whole, merged) = whole_and_merged("t1", &args, 2, "t1-converged");
+    assert!(whole.contains("t1_steps"), "{whole}");
     assert_eq!(whole, merged);
 }
 

@@ -135,9 +135,22 @@ pub fn t1_band_with<E>(
     options: &OasOptions,
     mut spectrum: impl FnMut(&OasOptions) -> Result<Oas, E>,
 ) -> Result<(Oas, T1Band), E> {
+    let nominal = spectrum(options)?;
+    t1_band_around(nominal, options, spectrum)
+}
+
+/// The band of `t_1` around a nominal spectrum already computed under `options` (the step
+/// converged by [`super::t1_step_converged`], say): the other perturbations of `options`
+/// computed by `spectrum`, in the order of [`Perturbation::ALL`]; the nominal is given back.
+pub fn t1_band_around<E>(
+    nominal: Oas,
+    options: &OasOptions,
+    mut spectrum: impl FnMut(&OasOptions) -> Result<Oas, E>,
+) -> Result<(Oas, T1Band), E> {
     let mut members = Vec::with_capacity(Perturbation::ALL.len());
-    for p in Perturbation::ALL {
-        members.push((p, spectrum(&p.apply(options))?));
+    members.push((Perturbation::Nominal, nominal));
+    for p in &Perturbation::ALL[1..] {
+        members.push((*p, spectrum(&p.apply(options))?));
     }
     let band = T1Band::of(&members);
     let nominal = members.swap_remove(0).1;

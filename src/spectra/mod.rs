@@ -63,7 +63,7 @@ pub use arch_design::{
     ArchCharacteristic, ArchRecord, ArchRule, NamedRule, RuleScore,
 };
 pub use arch_oc::{arch_oc_row, arch_overturning_curve, arch_pulse_run, ArchOc};
-pub use band::{t1_band, t1_band_with, Perturbation, T1Band};
+pub use band::{t1_band, t1_band_around, t1_band_with, Perturbation, T1Band};
 pub use hull::TransformedHull;
 pub use oas::{
     linear_levels, log_sizes, oas, record_overturns, Oas, OasLevel, OasOptions, OasPoint,
@@ -73,7 +73,8 @@ pub use overturning_curve::{overturning_curve, pulse_overturns, Oc, PulseShape};
 pub use point::{point_run, PointRun};
 pub use replacement_sine::{replacement_sine, ReplacementSine, SINE_FULLNESS};
 pub use step_convergence::{
-    check_step_convergence, t1_agree, t1_step_converged, t1_step_converged_with, StepConvergence,
+    check_step_convergence, t1_agree, t1_of, t1_of_with, t1_step_converged, t1_step_converged_with,
+    StepConvergence, T1Method, T1Result, STEP_HALVINGS, STEP_TOLERANCE,
 };
 pub use sweep::{column_of_size, Progress, SweepOptions};
 pub use time_step::TimeStep;

@@ -300,6 +300,50 @@ pub struct T1Row {
 }
 
 impl T1Row {
+    /// The row of `result` ([`super::t1_of`]) computed under `options` for a record whose step
+    /// rule is scaled by `dt_factor` (the row's `dt_factor` is the finest step's), with the
+    /// steps and the band when the method gave them.
+    pub fn of(
+        result: &super::T1Result,
+        seconds: f64,
+        file: Option<String>,
+        options: &super::OasOptions,
+        dt_factor: f64,
+        t_p: Option<f64>,
+        procedure: Option<String>,
+    ) -> T1Row {
+        let mut row = T1Row {
+            summary: SummaryReport::of(&result.oas, seconds),
+            file,
+            slenderness: options.slenderness,
+            blocks: options.n_blocks,
+            dt_factor: dt_factor * result.factor(),
+            search: options.search,
+            t_p,
+            procedure,
+            t1_range: None,
+            t1_conservative: None,
+            band: None,
+            t1_steps: None,
+            step_converged: None,
+        };
+        if let Some(b) = &result.band {
+            row.set_band(b);
+        }
+        if let Some(c) = &result.steps {
+            row.set_steps(c, dt_factor);
+        }
+        row
+    }
+
+    /// The dt factor of the row's first step: its own without convergence in the step.
+    pub fn first_dt_factor(&self) -> f64 {
+        self.t1_steps
+            .as_ref()
+            .and_then(|s| s.first())
+            .map_or(self.dt_factor, |s| s.0)
+    }
+
     /// Writes the band's figures into the row.
     pub fn set_band(&mut self, b: &super::T1Band) {
         self.t1_range = b.t1_range;

@@ -1,14 +1,17 @@
 //! `t_1` converged in the time step (issue 14, item 2): the OAS again at half the step, and again,
-//! until two successive steps give `t_1` within a tolerance.
+//! until two successive steps give `t_1` within a tolerance. It is how `rocking t1` (and the
+//! Python package's `t1`) compute `t_1` by default ([`T1Method`]).
 //!
-//! The default step rule ([`super::TimeStep::default`]) gives `t_1` within 10 % of the half step's
-//! on 95 of the 100 FEMA P695 records; on the other five, `t_1` moves by 12–21 % when the step
-//! halves and settles only at a quarter or an eighth of it (`docs/t1-accuracy.md`). A finer
-//! default for every record would multiply the cost of every OAS; this procedure pays for the
-//! finer steps only where the record needs them. It stops at the first pair of successive
-//! steps whose `t_1` agree (`max / min − 1 ≤ tolerance`, or both without overturning) and returns
-//! the finer spectrum of that pair; after `max_halvings` halvings without agreement it returns
-//! the finest spectrum, marked not converged.
+//! The step rule ([`super::TimeStep::default`]) gives `t_1` within 10 % of the half step's on 95
+//! of the 100 FEMA P695 records; on the other five, `t_1` moves by 12–21 % when the step halves
+//! and settles only at a quarter or an eighth of it, and on one (FF-9 DLT262) it never settles,
+//! its governing point chaotic (`docs/t1-accuracy.md`). A finer step rule for every record would
+//! multiply the cost of every OAS by the finest factor any record needs; this procedure pays for
+//! the finer steps only where the record needs them (about 3× one OAS where the half step
+//! agrees). It stops at the first pair of successive steps whose `t_1` agree (`max / min − 1 ≤
+//! tolerance`, or both without overturning) and returns the finer spectrum of that pair; after
+//! `max_halvings` halvings without agreement it returns the finest spectrum, marked not
+//! converged. `rocking oas` and `rocking suite` use the step rule alone (one OAS per record).
 
 use super::{oas, Oas, OasOptions, Progress, SpectraError};
 
@@ -112,4 +115,109 @@ pub fn t1_step_converged_with<E>(
             simulations,
         },
     ))
+}
+
+/// The tolerance of `rocking t1`'s default convergence in the step (`max / min − 1` of two
+/// successive `t_1`): the band `t1_converged_in_dt` asserts on the bundled record.
+pub const STEP_TOLERANCE: f64 = 0.1;
+/// The most halvings of the step by default (down to a sixteenth of the step rule).
+pub const STEP_HALVINGS: usize = 4;
+
+/// How `t_1` is computed (`rocking t1` and the Python package's `t1`): by default converged in
+/// the step ([`STEP_TOLERANCE`], [`STEP_HALVINGS`]), without the band.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct T1Method {
+    /// `Some((tolerance, max_halvings))`: the step halved until `t_1` converges
+    /// ([`t1_step_converged`]); `None`: one OAS at the options' step.
+    pub converge: Option<(f64, usize)>,
+    /// Also the band of `t_1` ([`super::t1_band`]) around the row's spectrum, at its step.
+    pub band: bool,
+}
+
+impl Default for T1Method {
+    fn default() -> T1Method {
+        T1Method {
+            converge: Some((STEP_TOLERANCE, STEP_HALVINGS)),
+            band: false,
+        }
+    }
+}
+
+impl T1Method {
+    /// One OAS at the options' step (the procedure before `t_1` converged by default).
+    pub const SINGLE_STEP: T1Method = T1Method {
+        converge: None,
+        band: false,
+    };
+
+    /// The checks of the tolerance and the halvings ([`check_step_convergence`]).
+    pub fn check(&self) -> Result<(), SpectraError> {
+        match self.converge {
+            Some((tolerance, halvings)) => check_step_convergence(tolerance, halvings),
+            None => Ok(()),
+        }
+    }
+
+    /// The fewest spectra the method computes (for a progress bar: two steps when converging,
+    /// four more with the band).
+    pub fn min_spectra(&self) -> usize {
+        let steps = if self.converge.is_some() { 2 } else { 1 };
+        steps + if self.band { 4 } else { 0 }
+    }
+}
+
+/// `t_1` of a record as [`T1Method`] computes it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct T1Result {
+    /// The row's spectrum (the finest step's when converging).
+    pub oas: Oas,
+    /// The steps tried, when converging.
+    pub steps: Option<StepConvergence>,
+    /// The band around `oas`, at its step.
+    pub band: Option<super::T1Band>,
+}
+
+impl T1Result {
+    /// The factor of the row's step relative to the options' (1 without convergence).
+    pub fn factor(&self) -> f64 {
+        self.steps.as_ref().map_or(1.0, StepConvergence::factor)
+    }
+}
+
+/// `t_1` of `record` under `options` by `method` (checked first).
+pub fn t1_of(
+    record: &crate::ground::records::Record,
+    options: &OasOptions,
+    method: T1Method,
+    progress: Option<Progress<'_>>,
+) -> Result<T1Result, SpectraError> {
+    method.check()?;
+    t1_of_with(options, method, |o| oas(record, o, progress))
+}
+
+/// [`t1_of`] with each spectrum computed by `spectrum` (as [`t1_step_converged_with`]); the
+/// caller checks the method first ([`T1Method::check`]). With the band, the spectra are the
+/// steps', then the band's other members at the row's step.
+pub fn t1_of_with<E>(
+    options: &OasOptions,
+    method: T1Method,
+    mut spectrum: impl FnMut(&OasOptions) -> Result<Oas, E>,
+) -> Result<T1Result, E> {
+    let (oas, steps) = match method.converge {
+        Some((tolerance, halvings)) => {
+            let (oas, steps) = t1_step_converged_with(options, tolerance, halvings, &mut spectrum)?;
+            (oas, Some(steps))
+        }
+        None => (spectrum(options)?, None),
+    };
+    let factor = steps.as_ref().map_or(1.0, StepConvergence::factor);
+    let (oas, band) = if method.band {
+        let mut at = options.clone();
+        at.sweep.time_step = at.sweep.time_step.scaled(factor);
+        let (oas, band) = super::band::t1_band_around(oas, &at, spectrum)?;
+        (oas, Some(band))
+    } else {
+        (oas, None)
+    };
+    Ok(T1Result { oas, steps, band })
 }

@@ -317,6 +317,64 @@ fn t1_band_and_step_convergence_with_a_callers_spectra() {
     assert!(check_step_convergence(0.0, 0).is_err());
 }
 
+/// `t1_of`'s default converges in the step (the spectra `t1_step_converged` computes), and with
+/// the band the other members are taken at the row's step: asked in order, the steps' spectra
+/// first, then half the row's step, the shifted grids and the other locator at it.
+#[test]
+fn t1_of_converges_by_default_and_takes_the_band_at_the_rows_step() {
+    let record = bundled_record();
+    let grid = OasOptions {
+        levels: linear_levels(1.0, 10.0, 8),
+        sizes: log_sizes(1000.0, 0.1, 24),
+        ..OasOptions::default()
+    };
+    let method = T1Method::default();
+    assert_eq!(method.converge, Some((STEP_TOLERANCE, STEP_HALVINGS)));
+    let r = t1_of(&record, &grid, method, None).unwrap();
+    let (oas, steps) =
+        t1_step_converged(&record, &grid, STEP_TOLERANCE, STEP_HALVINGS, None).unwrap();
+    assert_eq!(r.oas, oas);
+    assert_eq!(r.steps.as_ref(), Some(&steps));
+    assert!(r.band.is_none());
+    let factor = r.factor();
+    assert!(factor < 1.0, "{steps:?}");
+    let mut asked = Vec::new();
+    let banded = t1_of_with(
+        &grid,
+        T1Method {
+            band: true,
+            ..method
+        },
+        |o| {
+            asked.push(o.clone());
+            oas_of(&record, o)
+        },
+    )
+    .unwrap();
+    assert_eq!(banded.oas, r.oas);
+    let n = steps.steps.len();
+    assert_eq!(asked.len(), n + 4);
+    let mut at = grid.clone();
+    at.sweep.time_step = at.sweep.time_step.scaled(factor);
+    for (k, p) in Perturbation::ALL[1..].iter().enumerate() {
+        assert_eq!(asked[n + k], p.apply(&at), "{p:?}");
+    }
+    let band = banded.band.unwrap();
+    assert_eq!(band.members[0], (Perturbation::Nominal, r.oas.t1()));
+    let single = t1_of(&record, &grid, T1Method::SINGLE_STEP, None).unwrap();
+    assert_eq!(single.oas.t1(), steps.steps[0].1);
+    assert!(single.steps.is_none() && single.factor() == 1.0);
+    let bad = T1Method {
+        converge: Some((f64::NAN, 4)),
+        band: false,
+    };
+    assert!(t1_of(&record, &grid, bad, None).is_err());
+}
+
+fn oas_of(record: &Record, o: &OasOptions) -> Result<Oas, SpectraError> {
+    oas(record, o, None)
+}
+
 #[test]
 fn t1_agree_counts_no_overturning_as_agreement_only_with_itself() {
     assert!(t1_agree(None, None, 0.0));

@@ -36,6 +36,11 @@ pub struct SpectraBenchArgs {
     /// cost of a finer default step, and t₁ at both steps (convergence).
     #[arg(long = "dt-factor", value_parser = crate::commands::sweep::positive)]
     pub dt_factor: Option<f64>,
+    /// Also t₁ converged in the step as `rocking t1` computes it by default (halving the step
+    /// until two t₁ agree within TOL, e.g. 0.1, at most four times): its cost against the one
+    /// OAS at the step rule (`rocking t1 --single-step`), wall and CPU.
+    #[arg(long, value_name = "TOL", value_parser = crate::commands::sweep::non_negative)]
+    pub converge_step: Option<f64>,
     /// Equal blocks in the column (thesis Fig. 43: 1, 2, 3).
     #[arg(long, default_value_t = 1, value_parser = crate::commands::sweep::count)]
     pub blocks: usize,
@@ -69,6 +74,18 @@ struct Row {
     t1: Option<f64>,
     /// `(seconds, t₁)` with the step scaled by `--dt-factor`.
     scaled: Option<(f64, Option<f64>)>,
+    /// t₁ converged in the step (`--converge-step`).
+    converged: Option<Converged>,
+}
+
+/// t₁ converged in the step: its cost and its answer.
+struct Converged {
+    seconds: f64,
+    cpu: Option<f64>,
+    t1: Option<f64>,
+    /// The row's step factor and whether the last two steps agreed.
+    factor: f64,
+    ok: bool,
 }
 
 fn bundled() -> Result<Record, String> {
@@ -154,6 +171,25 @@ pub fn run(args: &SpectraBenchArgs) -> Result<(), String> {
         } else {
             (None, None)
         };
+        let converged = match args.converge_step {
+            Some(tol) => {
+                let method = spectra::T1Method {
+                    converge: Some((tol, spectra::STEP_HALVINGS)),
+                    band: false,
+                };
+                let (t0, c0) = (Instant::now(), process_cpu_seconds());
+                let r =
+                    spectra::t1_of(record, &options, method, None).map_err(|e| e.to_string())?;
+                Some(Converged {
+                    seconds: t0.elapsed().as_secs_f64(),
+                    cpu: c0.zip(process_cpu_seconds()).map(|(a, b)| b - a),
+                    t1: r.oas.t1(),
+                    factor: r.factor(),
+                    ok: r.steps.is_some_and(|c| c.converged),
+                })
+            }
+            None => None,
+        };
         let scaled = match args.dt_factor {
             Some(_) => {
                 let (o, s, _) = timed_oas(record, &scaled_options)?;
@@ -172,6 +208,7 @@ pub fn run(args: &SpectraBenchArgs) -> Result<(), String> {
             full_cpu,
             t1: oas.t1(),
             scaled,
+            converged,
         });
         bar.inc(1);
     }
@@ -207,6 +244,9 @@ pub fn run(args: &SpectraBenchArgs) -> Result<(), String> {
     if let Some(f) = args.dt_factor {
         text.push_str(&scaled_report(&rows, f));
     }
+    if let Some(tol) = args.converge_step {
+        text.push_str(&converged_report(&rows, tol));
+    }
     print!("{text}");
     if let Some(out) = &args.out {
         write_atomic(out, text.as_bytes())?;
@@ -239,6 +279,53 @@ fn scaled_report(rows: &[Row], factor: f64) -> String {
             f(t1),
             r.seconds,
             seconds / r.seconds
+        );
+    }
+    s
+}
+
+/// The cost and the t₁ of the step converged within `tol`, against the step rule's.
+fn converged_report(rows: &[Row], tol: f64) -> String {
+    let f = |v: Option<f64>| v.map_or("-".to_string(), |x| format!("{x:.4}"));
+    let mut s = format!(
+        "\nt1 converged in the step (tolerance {tol}, at most {} halvings; `rocking t1`'s \
+         default) against one OAS at the step rule (`--single-step`):\n\n| record | t1 (s) | \
+         converged t1 (s) | step | converged | wall (s) | converged wall (s) | wall ratio | \
+         CPU ratio |\n|---|---:|---:|---:|---|---:|---:|---:|---:|\n",
+        spectra::STEP_HALVINGS
+    );
+    let (mut cpu, mut cpu_converged) = (0.0, 0.0);
+    for r in rows {
+        let Some(c) = &r.converged else {
+            continue;
+        };
+        let cpu_ratio = match (r.cpu, c.cpu) {
+            (Some(a), Some(b)) if a > 0.0 => {
+                cpu += a;
+                cpu_converged += b;
+                format!("{:.2}", b / a)
+            }
+            _ => "-".into(),
+        };
+        let _ = writeln!(
+            s,
+            "| {} | {} | {} | x{} | {} | {:.2} | {:.2} | {:.2} | {cpu_ratio} |",
+            r.name,
+            f(r.t1),
+            f(c.t1),
+            c.factor,
+            if c.ok { "yes" } else { "no" },
+            r.seconds,
+            c.seconds,
+            c.seconds / r.seconds
+        );
+    }
+    if cpu > 0.0 {
+        let _ = writeln!(
+            s,
+            "\nCPU over the records: {cpu:.2} s at the step rule, {cpu_converged:.2} s converged \
+             (x{:.2}).",
+            cpu_converged / cpu
         );
     }
     s

@@ -48,20 +48,37 @@ pub struct T1Args {
     #[arg(long, requires = "svg")]
     pub png: bool,
     /// Also t₁'s band: the OAS again with half the time step, the level and the size grids
-    /// shifted by half a cell and the other event locator; adds `t1_range` [min, max],
+    /// shifted by half a cell and the other event locator, each at the row's step (the
+    /// converged one, or the rule's with --single-step); adds `t1_range` [min, max],
     /// `t1_conservative` (f_min of the envelope of those spectra) and each one's t₁ (`band`).
-    /// Five OAS per record.
+    /// Four OAS more per record.
     #[arg(long, conflicts_with = "merge")]
     pub band: bool,
-    /// t₁ converged in the time step: the OAS again at half the step, and again, until two
-    /// successive steps give t₁ within TOL (max/min − 1; e.g. 0.1) or after
-    /// --converge-halvings halvings; the row is the finest step's, with `t1_steps`
+    /// t₁ converged in the time step (the default): the OAS at the step rule, again at half
+    /// the step, and again, until two successive steps give t₁ within TOL (max/min − 1) or
+    /// after --converge-halvings halvings; the row is the finest step's, with `t1_steps`
     /// ([dt factor, t₁] of each step) and `step_converged`.
-    #[arg(long, value_name = "TOL", conflicts_with_all = ["merge", "band"])]
-    pub converge_step: Option<f64>,
-    /// With --converge-step: the most halvings of the step.
-    #[arg(long, default_value_t = 4, requires = "converge_step")]
+    #[arg(long, value_name = "TOL", default_value_t = spectra::STEP_TOLERANCE,
+          conflicts_with = "merge")]
+    pub converge_step: f64,
+    /// The most halvings of the step when converging.
+    #[arg(long, default_value_t = spectra::STEP_HALVINGS)]
     pub converge_halvings: usize,
+    /// One OAS at the step rule (× --dt-factor), not converged in the step: 2–5× faster; t₁
+    /// within 10 % of the converged one on 95 of the FEMA P695 records (docs/t1-accuracy.md).
+    /// The step `rocking oas` and `rocking suite` use.
+    #[arg(long, conflicts_with_all = ["merge", "converge_step", "converge_halvings"])]
+    pub single_step: bool,
+}
+
+impl T1Args {
+    /// How t₁ is computed.
+    fn method(&self) -> spectra::T1Method {
+        spectra::T1Method {
+            converge: (!self.single_step).then_some((self.converge_step, self.converge_halvings)),
+            band: self.band,
+        }
+    }
 }
 
 /// One record's row of `t1 --json`: the library's row and, with `--explain`, the run of the
@@ -130,74 +147,42 @@ fn governing(
 pub fn run(a: &T1Args) -> Result<(), String> {
     let rows: Vec<Row> = if a.merge.is_empty() {
         let o = a.grid.options(&a.simulation);
+        let method = a.method();
+        method.check().map_err(|e| e.to_string())?;
         let files = a.shard.keep(&a.records);
-        let members = if a.band {
-            spectra::Perturbation::ALL.len()
-        } else if a.converge_step.is_some() {
-            // At least two steps; the bar's length is a lower bound when more are needed.
-            2
-        } else {
-            1
-        };
-        let bar = progress::bar((files.len() * o.levels.len() * members) as u64, "t1");
+        // A lower bound of the spectra when converging (more steps may be needed).
+        let bar = progress::bar(
+            (files.len() * o.levels.len() * method.min_spectra()) as u64,
+            "t1",
+        );
+        let procedure = (a.grid.procedure != Procedure::Converged).then(|| a.grid.procedure.name());
         let mut rows = Vec::new();
         for f in files {
             bar.set_message(f.display().to_string());
             let record = super::sweep::read(&f)?;
             let t0 = Instant::now();
             let tick = || bar.inc(1);
-            let (mut band, mut steps) = (None, None);
-            let r = if a.band {
-                let (r, b) =
-                    spectra::t1_band(&record, &o, Some(&tick)).map_err(|e| e.to_string())?;
-                band = Some(b);
-                r
-            } else if let Some(tol) = a.converge_step {
-                let (r, c) =
-                    spectra::t1_step_converged(&record, &o, tol, a.converge_halvings, Some(&tick))
-                        .map_err(|e| e.to_string())?;
-                steps = Some(c);
-                r
-            } else {
-                spectra::oas(&record, &o, Some(&tick)).map_err(|e| e.to_string())?
-            };
-            // The row's spectrum is the finest step's with --converge-step.
-            let row_factor = steps.as_ref().map_or(1.0, |c| c.factor());
+            let result =
+                spectra::t1_of(&record, &o, method, Some(&tick)).map_err(|e| e.to_string())?;
             let t_p = spectra::replacement_sine(&record).map(|s| s.t_p);
-            let summary = Summary::of(&r, t0.elapsed().as_secs_f64());
+            let row = T1Row::of(
+                &result,
+                t0.elapsed().as_secs_f64(),
+                Some(f.display().to_string()),
+                &o,
+                a.simulation.dt_factor,
+                t_p,
+                procedure.clone(),
+            );
             let governing = if a.explain {
+                // The governing point's run at the row's step.
                 let mut o_row = o.clone();
-                o_row.sweep.time_step = o_row.sweep.time_step.scaled(row_factor);
-                governing(&record, &summary, &o_row)?
+                o_row.sweep.time_step = o_row.sweep.time_step.scaled(result.factor());
+                governing(&record, &row.summary, &o_row)?
             } else {
                 None
             };
-            let mut row = Row {
-                row: T1Row {
-                    summary,
-                    file: Some(f.display().to_string()),
-                    slenderness: o.slenderness,
-                    blocks: o.n_blocks,
-                    dt_factor: a.simulation.dt_factor * row_factor,
-                    search: o.search,
-                    t_p,
-                    procedure: (a.grid.procedure != Procedure::Converged)
-                        .then(|| a.grid.procedure.name()),
-                    t1_range: None,
-                    t1_conservative: None,
-                    band: None,
-                    t1_steps: None,
-                    step_converged: None,
-                },
-                governing,
-            };
-            if let Some(b) = &band {
-                row.set_band(b);
-            }
-            if let Some(c) = &steps {
-                row.set_steps(c, a.simulation.dt_factor);
-            }
-            rows.push(row);
+            rows.push(Row { row, governing });
         }
         bar.finish_and_clear();
         rows
@@ -217,7 +202,7 @@ pub fn run(a: &T1Args) -> Result<(), String> {
             let procedure =
                 (a.grid.procedure != Procedure::Converged).then(|| a.grid.procedure.name());
             for r in &mut rows {
-                if r.dt_factor != a.simulation.dt_factor
+                if r.first_dt_factor() != a.simulation.dt_factor
                     || r.slenderness != o.slenderness
                     || r.blocks != o.n_blocks
                     || r.procedure != procedure
@@ -226,14 +211,20 @@ pub fn run(a: &T1Args) -> Result<(), String> {
                         "--explain: {} was computed with other options (dt factor {}, \
                          slenderness {}, blocks {}, procedure {}): pass the same",
                         file_of(r),
-                        r.dt_factor,
+                        r.first_dt_factor(),
                         r.slenderness,
                         r.blocks,
                         r.procedure.as_deref().unwrap_or("converged")
                     ));
                 }
                 let record = super::sweep::read(std::path::Path::new(file_of(r)))?;
-                r.governing = governing(&record, &r.summary, &o)?;
+                // The governing point's run at the row's own step (the finest when converged).
+                let mut o_row = o.clone();
+                o_row.sweep.time_step = o_row
+                    .sweep
+                    .time_step
+                    .scaled(r.dt_factor / a.simulation.dt_factor);
+                r.governing = governing(&record, &r.summary, &o_row)?;
             }
         }
         rows.sort_by(|x, y| file_of(x).cmp(file_of(y)));
