@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # docs/t1-table.md from the stored rows (no simulation): tools/t1_table.py (the tables against
-# Tables 4 and 5, the band on the records that have one, the procedure variants) and
+# Tables 4 and 5, the band on the records that have one, the procedure variants),
+# tools/t1_converged_table.py (the default t₁, converged in the step) and
 # tools/t1_band_table.py (each band member per record).
 #   tools/t1_doc.sh [SHARED_DIR]      (default ../shared)
 set -euo pipefail
@@ -14,6 +15,10 @@ bands=("$d"/t1-band/*.json)
 {
   python3 tools/t1_table.py "$d/t1-farfield.json" "$d/t1-nearfield.json" "$shared" \
     --band "${bands[@]}" --explain "$d/t1-farfield-explain.json" "${variants[@]}"
+  echo
+  python3 tools/t1_converged_table.py "$d/t1-dt/converge/farfield-default.json" \
+    "$d/t1-dt/converge/farfield-converge.json" "$d/t1-nearfield.json" \
+    "$d/t1-dt/converge/nearfield-converge.json" "$shared"
   echo
   echo "## t₁'s band per record: each member (issue 14 item 3)"
   echo

@@ -310,7 +310,10 @@ if variants:
       "default's; \"into / out of ±10 %\" list the records whose ratio to Table 4 crosses the ±10 % band. "
       "Each variant's output is `docs/data/t1-farfield-NAME.json` (`rocking t1 ../shared/records/fema-p695/farfield/*.AT2 "
       "--json --procedure NAME`); this table: `tools/t1_table.py docs/data/t1-farfield.json docs/data/t1-nearfield.json "
-      "../shared NAME=docs/data/t1-farfield-NAME.json ...`.\n")
+      "../shared NAME=docs/data/t1-farfield-NAME.json ...`. All at the step rule (one OAS each, "
+      "`--single-step` today); the procedure named `converged` is the default's run length and grid (the whole "
+      "record and 2/p of free rocking after it, 80 linear levels), not the convergence in the step of the next "
+      "section.\n")
     procedures = ["record-end", "strong-motion", "record-dt", "levels-open", "levels-log"]
     missing = [p for p in procedures if p not in [n for n, _ in variants]]
     if missing:

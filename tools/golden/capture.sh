@@ -19,9 +19,12 @@ for s in examples/scenes/*.json; do
   sha256sum < "$d/history.csv" | cut -d' ' -f1 > "$out/scenes/$name.history.sha256"
   rm -rf "$d"
 done
-$R t1 examples/records/synthetic.AT2 --json | grep -v '"seconds"' > "$out/t1-synthetic.json"
+# t1 at the step rule (the redesign's answers), and converged in the step (the default since
+# 2026-11-24).
+$R t1 examples/records/synthetic.AT2 --json --single-step | grep -v '"seconds"' > "$out/t1-synthetic.json"
+$R t1 examples/records/synthetic.AT2 --json | grep -v '"seconds"' > "$out/t1-synthetic-converged.json"
 $R oas examples/records/synthetic.AT2 --json --levels 16 --sizes 40 | grep -v '"seconds"' > "$out/oas-synthetic.json"
-$R t1 examples/records/synthetic.AT2 --json --blocks 3 --impacts 2 --levels 8 --sizes 24 | grep -v '"seconds"' > "$out/t1-synthetic-3blocks.json"
+$R t1 examples/records/synthetic.AT2 --json --single-step --blocks 3 --impacts 2 --levels 8 --sizes 24 | grep -v '"seconds"' > "$out/t1-synthetic-3blocks.json"
 $R oc --shape half-sine --blocks 2 --impacts 2 --ptp-n 12 --level-n 12 --json > "$out/oc-half-sine.json"
 $R oc --shape ricker --ptp-n 12 --level-n 12 --json > "$out/oc-ricker.json"
 $R design width --height 10 --pga 3 --t1 0.25 --mass uniform --json > "$out/design-width.json"
@@ -42,7 +45,7 @@ done
 rm -rf "$d"
 if [ "$shared" = 1 ]; then
   for set in farfield; do
-    $R t1 ../shared/records/fema-p695/$set/*.AT2 --json | grep -v '"seconds"' > "$out/t1-$set.json"
+    $R t1 ../shared/records/fema-p695/$set/*.AT2 --json --single-step | grep -v '"seconds"' > "$out/t1-$set.json"
   done
 fi
 echo "golden outputs in $out"
