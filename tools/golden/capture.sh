@@ -2,6 +2,8 @@
 # Captures the outputs that the architecture redesign must keep bit for bit (issue 10), into
 # DIR (default tests/golden). Run with the release CLI built:  tools/golden/capture.sh [DIR]
 # `--shared` also runs t1 over every FEMA P695 record of ../shared (about 3 min).
+# The t1 goldens are `--single-step` rows (one OAS at the step rule, the default before t1
+# converged in the step).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 out=tests/golden; shared=0
@@ -19,9 +21,9 @@ for s in examples/scenes/*.json; do
   sha256sum < "$d/history.csv" | cut -d' ' -f1 > "$out/scenes/$name.history.sha256"
   rm -rf "$d"
 done
-$R t1 examples/records/synthetic.AT2 --json | grep -v '"seconds"' > "$out/t1-synthetic.json"
+$R t1 examples/records/synthetic.AT2 --json --single-step | grep -v '"seconds"' > "$out/t1-synthetic.json"
 $R oas examples/records/synthetic.AT2 --json --levels 16 --sizes 40 | grep -v '"seconds"' > "$out/oas-synthetic.json"
-$R t1 examples/records/synthetic.AT2 --json --blocks 3 --impacts 2 --levels 8 --sizes 24 | grep -v '"seconds"' > "$out/t1-synthetic-3blocks.json"
+$R t1 examples/records/synthetic.AT2 --json --blocks 3 --impacts 2 --levels 8 --sizes 24 --single-step | grep -v '"seconds"' > "$out/t1-synthetic-3blocks.json"
 $R oc --shape half-sine --blocks 2 --impacts 2 --ptp-n 12 --level-n 12 --json > "$out/oc-half-sine.json"
 $R oc --shape ricker --ptp-n 12 --level-n 12 --json > "$out/oc-ricker.json"
 $R design width --height 10 --pga 3 --t1 0.25 --mass uniform --json > "$out/design-width.json"
@@ -42,7 +44,7 @@ done
 rm -rf "$d"
 if [ "$shared" = 1 ]; then
   for set in farfield; do
-    $R t1 ../shared/records/fema-p695/$set/*.AT2 --json | grep -v '"seconds"' > "$out/t1-$set.json"
+    $R t1 ../shared/records/fema-p695/$set/*.AT2 --json --single-step | grep -v '"seconds"' > "$out/t1-$set.json"
   done
 fi
 echo "golden outputs in $out"
