@@ -206,20 +206,21 @@ def t1(
     records: Union[Record, Path],
     *,
     band: bool = False,
-    converge_step: Optional[float] = None,
+    converge_step: Optional[float] = 0.1,
     converge_halvings: int = 4,
     **options: Any,
 ) -> Dict[str, Any]:
-    """t1 (Eq. 20) of a record, as ``rocking t1 --json`` (``band``: ``--band``; ``converge_step``,
-    ``converge_halvings``: ``--converge-step``, ``--converge-halvings``; not both); the other
-    options are :func:`oas`'s."""
+    """t1 (Eq. 20) of a record, as ``rocking t1 --json``: converged in the time step by default
+    (``converge_step``, ``converge_halvings``: ``--converge-step``, ``--converge-halvings``;
+    ``converge_step=None``: ``--single-step``); ``band``: ``--band``, at the row's step; the
+    other options are :func:`oas`'s."""
 
 @overload
 def t1(
     records: Sequence[Union[Record, Path]],
     *,
     band: bool = False,
-    converge_step: Optional[float] = None,
+    converge_step: Optional[float] = 0.1,
     converge_halvings: int = 4,
     **options: Any,
 ) -> List[Dict[str, Any]]: ...

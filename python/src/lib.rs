@@ -55,6 +55,9 @@ fn _rocking(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(simulate::_simulate, m)?)?;
     m.add_function(wrap_pyfunction!(spectra::_oas, m)?)?;
     m.add_function(wrap_pyfunction!(spectra::_t1, m)?)?;
+    // The defaults of `t1`'s convergence in the step (`rocking t1 --converge-step`'s).
+    m.add("STEP_TOLERANCE", rocking::spectra::STEP_TOLERANCE)?;
+    m.add("STEP_HALVINGS", rocking::spectra::STEP_HALVINGS)?;
     m.add_function(wrap_pyfunction!(spectra::_oc, m)?)?;
     m.add_function(wrap_pyfunction!(spectra::_simplified_oas, m)?)?;
     m.add_function(wrap_pyfunction!(spectra::_tp, m)?)?;

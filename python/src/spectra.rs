@@ -14,7 +14,7 @@ use pyo3::types::PyInt;
 use rocking::driver::{EventLocator, Integrator};
 use rocking::ground::records::{self, PlainFormat, Record as CoreRecord};
 use rocking::model::single_block::EquivalentBlock;
-use rocking::spectra::report::{OasReport, OcReport, SuiteReport, SummaryReport, T1Row, TpRow};
+use rocking::spectra::report::{OasReport, OcReport, SuiteReport, T1Row, TpRow};
 use rocking::spectra::{
     self, column_of_size, linear_levels, log_sizes, Oas, OasLevel, OasOptions, Oc, PulseShape,
     SizeSearch, SpectraError, SweepOptions,
@@ -191,13 +191,17 @@ pub fn _oas<'py>(
     ))
 }
 
-/// `t1 --json`'s row of each record (a `Record` or a path), in order. `band`: `t1 --band` (the
-/// library's `t1_band`, five OAS); `converge_step`: `t1 --converge-step TOL --converge-halvings
-/// N` (`t1_step_converged`, the row the finest step's). Each OAS of either runs on the runner,
-/// one level per unit of work, as `compute_oas`; the library composes them, so the rows are the
-/// CLI's.
+/// `t1 --json`'s row of each record (a `Record` or a path), in order, by the library's
+/// `t1_of_with` as `rocking t1` computes it: `converge_step` `Some(TOL)` converged in the step
+/// (`--converge-step TOL --converge-halvings N`; the default, `STEP_TOLERANCE` and
+/// `STEP_HALVINGS`), None one OAS at the step rule (`--single-step`); `band`: `--band`, at the
+/// row's step. Each OAS runs on the runner, one level per unit of work, as `compute_oas`; the
+/// library composes them and builds the row (`T1Row::of`), so the rows are the CLI's.
 #[pyfunction]
-#[pyo3(signature = (records, grid, simulation, threads, progress, band = false, converge_step = None, converge_halvings = 4))]
+#[pyo3(signature = (
+    records, grid, simulation, threads, progress, band = false,
+    converge_step = Some(spectra::STEP_TOLERANCE), converge_halvings = spectra::STEP_HALVINGS as i64
+))]
 #[allow(clippy::too_many_arguments)]
 pub fn _t1<'py>(
     py: Python<'py>,
@@ -211,14 +215,8 @@ pub fn _t1<'py>(
     converge_halvings: i64,
 ) -> PyResult<Bound<'py, PyAny>> {
     let o = grid.options(&simulation)?;
-    // The CLI's `conflicts_with`, then the library's checks of the tolerance and the halvings
-    // (`check_step_convergence`) with the arguments' names.
-    if band && converge_step.is_some() {
-        return Err(value_error(
-            "band and converge_step: give one (the band is five OAS at the given step; \
-             converge_step halves the step until t1 converges)",
-        ));
-    }
+    // The checks of the tolerance and the halvings with the arguments' names, then the
+    // library's (`T1Method::check`).
     let halvings = usize::try_from(converge_halvings)
         .ok()
         .filter(|&n| n >= 1)
@@ -229,50 +227,28 @@ pub fn _t1<'py>(
         })?;
     if let Some(tol) = converge_step {
         validate::non_negative("converge_step", tol).map_err(value_error)?;
-        spectra::check_step_convergence(tol, halvings).map_err(spectra_error)?;
     }
+    let method = spectra::T1Method {
+        converge: converge_step.map(|tol| (tol, halvings)),
+        band,
+    };
+    method.check().map_err(spectra_error)?;
     let runner = Runner { threads, progress };
     let mut rows = Vec::with_capacity(records.len());
     for r in &records {
         let (record, file) = record_of(r)?;
         let t0 = Instant::now();
-        let spectrum = |x: &OasOptions| compute_oas(py, &record, x, &runner);
-        let (mut t1_band, mut steps) = (None, None);
-        let result = if band {
-            let (r, b) = spectra::t1_band_with(&o, spectrum)?;
-            t1_band = Some(b);
-            r
-        } else if let Some(tol) = converge_step {
-            let (r, c) = spectra::t1_step_converged_with(&o, tol, halvings, spectrum)?;
-            steps = Some(c);
-            r
-        } else {
-            spectrum(&o)?
-        };
-        // The dt factor of the spectrum in the row (the finest step's with converge_step).
-        let row_factor = steps.as_ref().map_or(1.0, |c| c.factor());
-        let mut row = T1Row {
-            summary: SummaryReport::of(&result, t0.elapsed().as_secs_f64()),
+        let result = spectra::t1_of_with(&o, method, |x| compute_oas(py, &record, x, &runner))?;
+        let t_p = spectra::replacement_sine(&record).map(|s| s.t_p);
+        rows.push(T1Row::of(
+            &result,
+            t0.elapsed().as_secs_f64(),
             file,
-            slenderness: o.slenderness,
-            blocks: o.n_blocks,
-            dt_factor: simulation.dt_factor * row_factor,
-            search: o.search,
-            t_p: spectra::replacement_sine(&record).map(|s| s.t_p),
-            procedure: None,
-            t1_range: None,
-            t1_conservative: None,
-            band: None,
-            t1_steps: None,
-            step_converged: None,
-        };
-        if let Some(b) = &t1_band {
-            row.set_band(b);
-        }
-        if let Some(c) = &steps {
-            row.set_steps(c, simulation.dt_factor);
-        }
-        rows.push(row);
+            &o,
+            simulation.dt_factor,
+            t_p,
+            None,
+        ));
     }
     to_python(py, &rows)
 }

@@ -1,6 +1,7 @@
-"""rocking.t1's band and converge_step against the CLI: the rows equal `rocking t1 --json` with
-`--band` and `--converge-step TOL --converge-halvings N` (wall times aside) on small grids of the
-bundled record, for any number of threads; Ctrl-C stops them; bad values name the argument."""
+"""rocking.t1 against the CLI: the rows equal `rocking t1 --json` (wall times aside) on small grids
+of the bundled record, for any number of threads, by default (converged in the step), with
+`converge_step=None` (`--single-step`), `band` (`--band`, with either) and the other
+`--converge-step TOL --converge-halvings N`; Ctrl-C stops them; bad values name the argument."""
 import json
 import os
 import signal
@@ -21,18 +22,59 @@ def without_seconds(rows):
     return rows
 
 
-def test_band_as_the_cli(root, cli, monkeypatch):
+def test_default_converges_in_the_step_as_the_cli(root, cli, monkeypatch, reversed_record):
     monkeypatch.chdir(root)
-    rows = rocking.t1([RECORD], band=True, **GRID)
-    assert without_seconds(rows) == without_seconds(cli("t1", RECORD, "--json", *GRID_CLI, "--band"))
+    records = [RECORD, str(reversed_record)]
+    rows = rocking.t1(records, **GRID)
+    assert without_seconds(rows) == without_seconds(cli("t1", *records, "--json", *GRID_CLI))
+    explicit = rocking.t1(records, converge_step=0.1, converge_halvings=4, **GRID)
+    assert without_seconds(explicit) == without_seconds(rows)
+    for row in rows:
+        steps = row["t1_steps"]
+        assert steps[0][0] == 1.0 and row["dt_factor"] == steps[-1][0] and row["t1"] == steps[-1][1]
+        assert 2 <= len(steps) <= 5 and isinstance(row["step_converged"], bool) and "band" not in row
+
+
+def test_single_step_as_the_cli(root, cli, monkeypatch, reversed_record):
+    monkeypatch.chdir(root)
+    records = [RECORD, str(reversed_record)]
+    rows = rocking.t1(records, converge_step=None, **GRID)
+    assert without_seconds(rows) == without_seconds(cli("t1", *records, "--json", *GRID_CLI, "--single-step"))
+    for row in rows:
+        assert row["dt_factor"] == 1.0 and "t1_steps" not in row and "step_converged" not in row
+    # converge_halvings is unused without converge_step.
+    other = rocking.t1(records, converge_step=None, converge_halvings=7, **GRID)
+    assert without_seconds(other) == without_seconds(rows)
+
+
+@pytest.mark.parametrize(
+    "options, cli_options",
+    [
+        # Converged in the step (the default), the band at the row's step.
+        (dict(), ()),
+        (dict(converge_step=None), ("--single-step",)),
+        (dict(dt_factor=4.0, converge_halvings=3), ("--dt-factor", 4, "--converge-halvings", 3)),
+    ],
+)
+def test_band_as_the_cli(root, cli, monkeypatch, options, cli_options):
+    monkeypatch.chdir(root)
+    rows = rocking.t1([RECORD], band=True, **options, **GRID)
+    assert without_seconds(rows) == without_seconds(cli("t1", RECORD, "--json", *GRID_CLI, "--band", *cli_options))
     row = rows[0]
     assert set(row["band"]) == {"nominal", "half-step", "levels-shifted", "sizes-shifted", "other-locator"}
     assert row["band"]["nominal"] == row["t1"]
     lo, hi = row["t1_range"]
     assert lo <= row["t1"] <= hi == max(row["band"].values()) and row["t1_conservative"] >= hi
-    assert "t1_steps" not in row and "step_converged" not in row
+    if options.get("converge_step", 0.1) is None:
+        assert "t1_steps" not in row and "step_converged" not in row
+        assert row["dt_factor"] == options.get("dt_factor", 1.0)
+    else:
+        # The row is the converged spectrum's, the same as without the band.
+        alone = rocking.t1(RECORD, **options, **GRID)
+        assert (row["t1_steps"], row["step_converged"], row["dt_factor"], row["t1"]) == (
+            alone["t1_steps"], alone["step_converged"], alone["dt_factor"], alone["t1"])
     # The same band from a Record, on one thread.
-    one = rocking.t1(rocking.read_record(RECORD), band=True, threads=1, **GRID)
+    one = rocking.t1(rocking.read_record(RECORD), band=True, threads=1, **options, **GRID)
     assert one["file"] is None
     assert {k: one[k] for k in ("band", "t1_range", "t1_conservative", "simulations")} == {
         k: row[k] for k in ("band", "t1_range", "t1_conservative", "simulations")
@@ -74,17 +116,24 @@ def test_converge_step_as_the_cli(root, cli, monkeypatch, reversed_record, optio
         first["t1_steps"], first["step_converged"], first["dt_factor"])
 
 
-def test_progress_counts_the_levels_of_each_spectrum(root):
+@pytest.mark.parametrize(
+    "options, ends",
+    [
+        # Two steps that agree, then the band's four other OAS at the row's step.
+        (dict(), [8, 8, 8, 7, 8, 8]),
+        (dict(converge_step=None), [8, 8, 7, 8, 8]),
+    ],
+)
+def test_progress_counts_the_levels_of_each_spectrum(root, options, ends):
     seen = []
-    rocking.t1(root / RECORD, band=True, progress=lambda d, n: seen.append((d, n)), **GRID)
-    # One (total, total) per OAS: the nominal grid's 8 levels, one fewer with the levels shifted.
-    ends = [n for d, n in seen if d == n]
-    assert ends == [8, 8, 7, 8, 8]
+    rocking.t1(root / RECORD, band=True, progress=lambda d, n: seen.append((d, n)), **options, **GRID)
+    # One (total, total) per OAS: the grid's 8 levels, one fewer with the levels shifted.
+    assert [n for d, n in seen if d == n] == ends
 
 
 def test_ctrl_c_stops_the_band(root):
-    """SIGINT once the nominal OAS is done: KeyboardInterrupt (from the callback, or from the next
-    spectrum's sweep, which then stops), and no other spectrum finishes."""
+    """SIGINT once the first OAS (the step rule's) is done: KeyboardInterrupt (from the callback,
+    or from the next spectrum's sweep, which then stops), and no other spectrum finishes."""
     seen = []
 
     def progress(done, total):
@@ -101,12 +150,14 @@ def test_ctrl_c_stops_the_band(root):
 @pytest.mark.parametrize(
     "options, detail",
     [
-        (dict(band=True, converge_step=0.1), "^band and converge_step: "),
         (dict(converge_step=-0.1), r"^converge_step = -0\.1: "),
         (dict(converge_step=float("nan")), "^converge_step = NaN: "),
         (dict(converge_step=float("inf")), "^converge_step = inf: "),
         (dict(converge_step=0.1, converge_halvings=0), "^converge_halvings = 0: "),
         (dict(converge_step=0.1, converge_halvings=-2), "^converge_halvings = -2: "),
+        # Checked without converge_step too (the default converges; None leaves it unused).
+        (dict(converge_halvings=0), "^converge_halvings = 0: "),
+        (dict(converge_step=None, band=True, converge_halvings=-1), "^converge_halvings = -1: "),
     ],
 )
 def test_bad_values_name_the_argument(root, options, detail):
