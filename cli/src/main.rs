@@ -44,11 +44,13 @@ enum Command {
     /// (log) x a_p / a_p,min (linear, from 1); CSV, or JSON with --json.
     Oc(oc::OcArgs),
     /// Overturning acceleration spectrum of a record (Fig. 36, 37, 43); JSON, or CSV with --csv.
+    /// One OAS at the step rule: its t_1 is `rocking t1 --single-step`'s.
     #[command(
         override_usage = "rocking oas [OPTIONS] RECORD\n       rocking oas --merge SHARD.json... [--csv] [--svg PREFIX]"
     )]
     Oas(oas::OasArgs),
-    /// Replacement impulse duration t_1, t_1', beta, f_min of records (Eq. 20, 28).
+    /// Replacement impulse duration t_1, t_1', beta, f_min of records (Eq. 20, 28), converged
+    /// in the time step (--single-step: one OAS at the step rule).
     #[command(
         override_usage = "rocking t1 [OPTIONS] RECORD...\n       rocking t1 --merge SHARD.json... [--json]"
     )]
@@ -58,7 +60,8 @@ enum Command {
     Tp(tp::TpArgs),
     /// Site design curves of a record suite (5.3.1, Fig. 44, 47-49): every record's OAS, the
     /// characteristic OAS and design t_1 at each fractile, the convex hulls of the transformed
-    /// OAS, and Eq. 21, 29, 30 checked against every record.
+    /// OAS, and Eq. 21, 29, 30 checked against every record. Each record's OAS at the step
+    /// rule (its t_1 is `rocking t1 --single-step`'s).
     #[command(
         override_usage = "rocking suite [OPTIONS] RECORD...\n       rocking suite --merge FILE.json... [--json] [--svg PREFIX] [--csv PREFIX]"
     )]
