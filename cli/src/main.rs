@@ -44,7 +44,8 @@ enum Command {
     /// (log) x a_p / a_p,min (linear, from 1); CSV, or JSON with --json.
     Oc(oc::OcArgs),
     /// Overturning acceleration spectrum of a record (Fig. 36, 37, 43); JSON, or CSV with --csv.
-    /// One OAS at the step rule: its t_1 is `rocking t1 --single-step`'s.
+    /// One OAS at the step rule (its t_1 is `rocking t1 --single-step`'s), or converged in
+    /// the step with --converge-step; --band adds t_1's band.
     #[command(
         override_usage = "rocking oas [OPTIONS] RECORD\n       rocking oas --merge SHARD.json... [--csv] [--svg PREFIX]"
     )]

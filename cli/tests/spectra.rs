@@ -162,6 +162,50 @@ fn t1_converges_in_the_step_by_default() {
     assert!(!ok && err.contains("--single-step"), "{err}");
 }
 
+/// `rocking oas --converge-step 0.1 --band`: the spectrum is the finest step's (equal to `oas
+/// --dt-factor` at that step), with the same band and steps as `rocking t1 --band`; a plain
+/// `oas` has none of them, and the band refuses level shards.
+#[test]
+fn oas_band_and_converge_step_are_t1s() {
+    let json = |args: &[&str]| {
+        let mut all = vec![args[0], "examples/records/synthetic.AT2"];
+        all.extend(&args[1..]);
+        all.extend(SMALL);
+        let (ok, out, err) = rocking(&all);
+        assert!(ok, "{err}");
+        serde_json::from_str::<serde_json::Value>(&out).unwrap()
+    };
+    let oas = json(&["oas", "--converge-step", "0.1", "--band"]);
+    let t1 = json(&["t1", "--band", "--json"]);
+    let row = &t1[0];
+    for k in [
+        "t1_range",
+        "t1_conservative",
+        "band",
+        "t1_steps",
+        "step_converged",
+    ] {
+        assert!(oas.get(k).is_some(), "missing {k}: {oas}");
+        assert_eq!(oas[k], row[k], "{k}");
+    }
+    assert_eq!(oas["summary"]["t1"], row["t1"]);
+    let factor = format!("{}", row["dt_factor"].as_f64().unwrap());
+    let finest = json(&["oas", "--dt-factor", &factor]);
+    assert_eq!(oas["levels"], finest["levels"]);
+    let plain = json(&["oas"]);
+    for k in ["t1_range", "band", "t1_steps", "step_converged"] {
+        assert!(plain.get(k).is_none(), "{k} in a plain oas");
+    }
+    let (ok, _, err) = rocking(&[
+        "oas",
+        "examples/records/synthetic.AT2",
+        "--band",
+        "--shard",
+        "0/2",
+    ]);
+    assert!(!ok && err.contains("--shard"), "{err}");
+}
+
 #[test]
 fn design_width_reproduces_the_pier_example() {
     // Thesis 5.3.4: a_g = 0.14 g, t_1 = 0.7 s, H = 12 m: B_a = 1.299 m, B_b = 2.122 m (Eq. 23

@@ -156,6 +156,11 @@ class Oas:
     simulations: Int64Array
     summary: Dict[str, Any]
     conservative: Optional[Dict[str, int]]
+    t1_range: Optional[List[float]]
+    t1_conservative: Optional[float]
+    band: Optional[Dict[str, Optional[float]]]
+    t1_steps: Optional[List[List[Optional[float]]]]
+    step_converged: Optional[bool]
     @property
     def t1(self) -> Optional[float]: ...
     @property
@@ -196,10 +201,15 @@ def oas(
     hermite: bool = False,
     rk4: bool = False,
     full_runs: bool = False,
+    band: bool = False,
+    converge_step: Optional[float] = None,
+    converge_halvings: int = 4,
     threads: Optional[int] = None,
     progress: Optional[Progress] = None,
 ) -> Oas:
-    """The OAS of a record (thesis 5.2), as ``rocking oas --json``; parallel, Ctrl-C stops it."""
+    """The OAS of a record (thesis 5.2), as ``rocking oas --json`` (``band``, ``converge_step``,
+    ``converge_halvings``: ``--band``, ``--converge-step``, ``--converge-halvings``); parallel,
+    Ctrl-C stops it."""
 
 @overload
 def t1(

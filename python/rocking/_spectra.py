@@ -53,7 +53,9 @@ class Oas:
     (Eq. 20), ``t1_prime`` and ``beta`` (the inclined line of Eq. 28), ``f_min``,
     ``level_at_f_min``, ``size_at_f_min``, ``simulations``, ``seconds`` (wall time).
     ``conservative``: how many boundary points Eq. 21, 21 with ``i_cr = 1``, 29 and 30 predict
-    safe although they overturn. ``i_cr``: Eq. 18 of the slenderness. :meth:`to_dict` is the
+    safe although they overturn. ``i_cr``: Eq. 18 of the slenderness. With ``band`` or
+    ``converge_step`` (:func:`oas`): ``t1_range``, ``t1_conservative``, ``band``, ``t1_steps``,
+    ``step_converged`` as in :func:`t1`'s rows (None when not computed). :meth:`to_dict` is the
     JSON of ``rocking oas --json``.
     """
 
@@ -69,6 +71,8 @@ class Oas:
         _set_level_arrays(self, raw)
         self.summary = raw["summary"]
         self.conservative = raw["conservative"]
+        for k in ("t1_range", "t1_conservative", "band", "t1_steps", "step_converged"):
+            setattr(self, k, raw.get(k))
 
     @property
     def t1(self):
@@ -197,7 +201,8 @@ def _grid_args(slenderness, levels, level_max, sizes, size_min, size_max, blocks
 
 def oas(record, *, slenderness=12.0, levels=80, level_max=10.0, sizes=120, size_min=0.1, size_max=1000.0,
         blocks=1, bisection=False, impacts=1, dt_factor=1.0, tail=None, hermite=False, rk4=False,
-        full_runs=False, threads=None, progress=None):
+        full_runs=False, band=False, converge_step=None, converge_halvings=_rocking.STEP_HALVINGS, threads=None,
+        progress=None):
     """The overturning acceleration spectrum of a record (thesis 5.2, Fig. 36, 37, 43), as
     ``rocking oas RECORD --json``: for each level ``a_p / a_p,min`` the largest size ``R`` (half
     diagonal of the equivalent block, H/B = ``slenderness``) that the record scaled to
@@ -211,10 +216,19 @@ def oas(record, *, slenderness=12.0, levels=80, level_max=10.0, sizes=120, size_
     the column.
     {simulation}
 
+    One OAS at the step rule by default (the step ``t1(..., converge_step=None)`` uses). As
+    ``rocking oas --converge-step TOL --converge-halvings N --band``: ``converge_step=TOL`` the
+    spectrum converged in the time step as :func:`t1` computes it (the finest step's, with
+    ``t1_steps`` and ``step_converged``); ``band=True`` adds ``t1``'s band at the spectrum's step
+    (``t1_range``, ``t1_conservative``, ``band``).
+
     Returns an :class:`Oas`."""
+    _numbers(converge_step=converge_step, converge_halvings=converge_halvings)
     raw, i_cr = _rocking._oas(record, *_grid_args(slenderness, levels, level_max, sizes, size_min, size_max, blocks,
                                                   bisection, impacts, dt_factor, tail, hermite, rk4, full_runs,
-                                                  threads, progress))
+                                                  threads, progress),
+                              bool(band), None if converge_step is None else float(converge_step),
+                              int(converge_halvings))
     return Oas(raw, i_cr)
 
 

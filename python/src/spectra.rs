@@ -14,7 +14,7 @@ use pyo3::types::PyInt;
 use rocking::driver::{EventLocator, Integrator};
 use rocking::ground::records::{self, PlainFormat, Record as CoreRecord};
 use rocking::model::single_block::EquivalentBlock;
-use rocking::spectra::report::{OasReport, OcReport, SuiteReport, T1Row, TpRow};
+use rocking::spectra::report::{OasReport, OcReport, SuiteReport, T1Accuracy, T1Row, TpRow};
 use rocking::spectra::{
     self, column_of_size, linear_levels, log_sizes, Oas, OasLevel, OasOptions, Oc, PulseShape,
     SizeSearch, SpectraError, SweepOptions,
@@ -168,9 +168,14 @@ fn compute_oas(
 }
 
 /// The OAS of a record: `(oas --json as a dict, i_cr)`; `i_cr` (Eq. 18) of the slenderness for
-/// the simplified spectra of the plots.
+/// the simplified spectra of the plots. `band`, `converge_step`, `converge_halvings`: `oas
+/// --band --converge-step TOL --converge-halvings N` (by default one OAS at the step rule).
 #[pyfunction]
-#[pyo3(signature = (record, grid, simulation, threads, progress))]
+#[pyo3(signature = (
+    record, grid, simulation, threads, progress, band = false, converge_step = None,
+    converge_halvings = spectra::STEP_HALVINGS as i64
+))]
+#[allow(clippy::too_many_arguments)]
 pub fn _oas<'py>(
     py: Python<'py>,
     record: &Bound<'py, PyAny>,
@@ -178,17 +183,46 @@ pub fn _oas<'py>(
     simulation: Simulation,
     threads: Option<usize>,
     progress: Option<Py<PyAny>>,
+    band: bool,
+    converge_step: Option<f64>,
+    converge_halvings: i64,
 ) -> PyResult<(Bound<'py, PyAny>, f64)> {
     let (record, _) = record_of(record)?;
     let o = grid.options(&simulation)?;
+    let method = t1_method(band, converge_step, converge_halvings)?;
     let runner = Runner { threads, progress };
     let t0 = Instant::now();
-    let result = compute_oas(py, &record, &o, &runner)?;
+    let result = spectra::t1_of_with(&o, method, |x| compute_oas(py, &record, x, &runner))?;
     let seconds = t0.elapsed().as_secs_f64();
-    Ok((
-        to_python(py, &OasReport::of(&result, seconds))?,
-        result.i_cr(),
-    ))
+    let mut report = OasReport::of(&result.oas, seconds);
+    report.accuracy = T1Accuracy::of(&result, simulation.dt_factor);
+    Ok((to_python(py, &report)?, result.oas.i_cr()))
+}
+
+/// The method of `t1` and `oas` from their arguments: the checks of the tolerance and the
+/// halvings with the arguments' names, then the library's (`T1Method::check`).
+fn t1_method(
+    band: bool,
+    converge_step: Option<f64>,
+    converge_halvings: i64,
+) -> PyResult<spectra::T1Method> {
+    let halvings = usize::try_from(converge_halvings)
+        .ok()
+        .filter(|&n| n >= 1)
+        .ok_or_else(|| {
+            value_error(format!(
+                "converge_halvings = {converge_halvings}: must be >= 1"
+            ))
+        })?;
+    if let Some(tol) = converge_step {
+        validate::non_negative("converge_step", tol).map_err(value_error)?;
+    }
+    let method = spectra::T1Method {
+        converge: converge_step.map(|tol| (tol, halvings)),
+        band,
+    };
+    method.check().map_err(spectra_error)?;
+    Ok(method)
 }
 
 /// `t1 --json`'s row of each record (a `Record` or a path), in order, by the library's
@@ -215,24 +249,7 @@ pub fn _t1<'py>(
     converge_halvings: i64,
 ) -> PyResult<Bound<'py, PyAny>> {
     let o = grid.options(&simulation)?;
-    // The checks of the tolerance and the halvings with the arguments' names, then the
-    // library's (`T1Method::check`).
-    let halvings = usize::try_from(converge_halvings)
-        .ok()
-        .filter(|&n| n >= 1)
-        .ok_or_else(|| {
-            value_error(format!(
-                "converge_halvings = {converge_halvings}: must be >= 1"
-            ))
-        })?;
-    if let Some(tol) = converge_step {
-        validate::non_negative("converge_step", tol).map_err(value_error)?;
-    }
-    let method = spectra::T1Method {
-        converge: converge_step.map(|tol| (tol, halvings)),
-        band,
-    };
-    method.check().map_err(spectra_error)?;
+    let method = t1_method(band, converge_step, converge_halvings)?;
     let runner = Runner { threads, progress };
     let mut rows = Vec::with_capacity(records.len());
     for r in &records {

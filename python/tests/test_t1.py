@@ -178,3 +178,36 @@ def test_bad_values_name_the_argument(root, options, detail):
 def test_type_errors_name_the_argument(root, options, name):
     with pytest.raises(TypeError, match=name):
         rocking.t1(root / RECORD, levels=2, sizes=2, **options)
+
+
+@pytest.mark.parametrize(
+    "options, cli_options",
+    [
+        (dict(band=True, converge_step=0.1), ("--band", "--converge-step", 0.1)),
+        (dict(converge_step=0.1, converge_halvings=2, dt_factor=4.0),
+         ("--converge-step", 0.1, "--converge-halvings", 2, "--dt-factor", 4.0)),
+        (dict(band=True), ("--band",)),
+    ],
+)
+def test_oas_band_and_converge_step_as_the_cli(root, cli, monkeypatch, options, cli_options):
+    """rocking.oas(band=, converge_step=) is `rocking oas --band --converge-step` (wall time
+    aside), its attributes the report's; a plain oas has none of them."""
+    monkeypatch.chdir(root)
+    o = rocking.oas(RECORD, **options, **GRID)
+    want = cli("oas", RECORD, "--json", *GRID_CLI, *cli_options)
+    got = o.to_dict()
+    got["summary"].pop("seconds")
+    want["summary"].pop("seconds")
+    assert got == want
+    assert o.t1_range == want.get("t1_range") and o.t1_steps == want.get("t1_steps")
+    assert (o.t1_steps is not None) == ("converge_step" in options)
+    assert (o.band is not None) == options.get("band", False)
+    plain = rocking.oas(RECORD, **GRID)
+    assert plain.t1_range is None and plain.t1_steps is None and "band" not in plain.to_dict()
+
+
+def test_oas_bad_converge_step_names_it(root):
+    with pytest.raises(rocking.RockingError, match=r"^converge_step = -0\.1: "):
+        rocking.oas(root / RECORD, converge_step=-0.1, **GRID)
+    with pytest.raises(TypeError, match="^converge_step"):
+        rocking.oas(root / RECORD, converge_step="0.1", **GRID)

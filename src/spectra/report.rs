@@ -73,6 +73,10 @@ pub struct OasReport {
     pub levels: Vec<LevelReport>,
     pub summary: SummaryReport,
     pub conservative: Option<ConservativeCounts>,
+    /// With `rocking oas --band` or `--converge-step`: the band and the steps of `t_1` (the
+    /// spectrum is the finest step's).
+    #[serde(flatten)]
+    pub accuracy: T1Accuracy,
 }
 
 impl OasReport {
@@ -112,6 +116,7 @@ impl OasReport {
                     eq30: c.eq30.len(),
                 }
             }),
+            accuracy: T1Accuracy::default(),
         }
     }
 
@@ -281,22 +286,9 @@ pub struct T1Row {
     /// The t₁ procedure, when not the default (`converged`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub procedure: Option<String>,
-    /// With a band (`rocking t1 --band`): `[min, max]` of t₁ over the perturbations.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub t1_range: Option<[f64; 2]>,
-    /// With a band: `i_cr / f_min` of the envelope of the perturbed spectra.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub t1_conservative: Option<f64>,
-    /// With a band: t₁ of each perturbation, by name.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub band: Option<std::collections::BTreeMap<String, Option<f64>>>,
-    /// Converged in the step (`rocking t1 --converge-step`): `[dt factor, t₁]` of each step
-    /// tried, in order (the row's spectrum, and its `dt_factor`, are the last step's).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub t1_steps: Option<Vec<(f64, Option<f64>)>>,
-    /// Converged in the step: whether the last two steps' t₁ agree within the tolerance.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub step_converged: Option<bool>,
+    /// The band and the steps of `t_1`, when computed.
+    #[serde(flatten)]
+    pub accuracy: T1Accuracy,
 }
 
 impl T1Row {
@@ -312,7 +304,7 @@ impl T1Row {
         t_p: Option<f64>,
         procedure: Option<String>,
     ) -> T1Row {
-        let mut row = T1Row {
+        T1Row {
             summary: SummaryReport::of(&result.oas, seconds),
             file,
             slenderness: options.slenderness,
@@ -321,50 +313,64 @@ impl T1Row {
             search: options.search,
             t_p,
             procedure,
-            t1_range: None,
-            t1_conservative: None,
-            band: None,
-            t1_steps: None,
-            step_converged: None,
-        };
-        if let Some(b) = &result.band {
-            row.set_band(b);
+            accuracy: T1Accuracy::of(result, dt_factor),
         }
-        if let Some(c) = &result.steps {
-            row.set_steps(c, dt_factor);
-        }
-        row
     }
 
     /// The dt factor of the row's first step: its own without convergence in the step.
     pub fn first_dt_factor(&self) -> f64 {
-        self.t1_steps
+        self.accuracy
+            .t1_steps
             .as_ref()
             .and_then(|s| s.first())
             .map_or(self.dt_factor, |s| s.0)
     }
+}
 
-    /// Writes the band's figures into the row.
-    pub fn set_band(&mut self, b: &super::T1Band) {
-        self.t1_range = b.t1_range;
-        self.t1_conservative = b.t1_conservative;
-        self.band = Some(
-            b.members
-                .iter()
-                .map(|(p, t)| (p.name().to_string(), *t))
-                .collect(),
-        );
-    }
+/// How far a `t_1` can be trusted (issue 14): its band and the steps of its convergence in the
+/// time step, each when computed (`rocking t1` and `rocking oas` with `--band`, `--converge-step`).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct T1Accuracy {
+    /// With a band (`--band`): `[min, max]` of t₁ over the perturbations.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub t1_range: Option<[f64; 2]>,
+    /// With a band: `i_cr / f_min` of the envelope of the perturbed spectra.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub t1_conservative: Option<f64>,
+    /// With a band: t₁ of each perturbation, by name.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub band: Option<std::collections::BTreeMap<String, Option<f64>>>,
+    /// Converged in the step (`--converge-step`): `[dt factor, t₁]` of each step
+    /// tried, in order (the row's spectrum, and its `dt_factor`, are the last step's).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub t1_steps: Option<Vec<(f64, Option<f64>)>>,
+    /// Converged in the step: whether the last two steps' t₁ agree within the tolerance.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub step_converged: Option<bool>,
+}
 
-    /// Writes the step history into the row; `first_factor` is the dt factor of the first step.
-    pub fn set_steps(&mut self, c: &super::StepConvergence, first_factor: f64) {
-        self.t1_steps = Some(
-            c.steps
-                .iter()
-                .map(|(f, t)| (first_factor * f, *t))
-                .collect(),
-        );
-        self.step_converged = Some(c.converged);
+impl T1Accuracy {
+    /// The band and the steps of `result` ([`super::t1_of`]), the steps' dt factors relative to
+    /// the record's step rule scaled by `first_factor`.
+    pub fn of(result: &super::T1Result, first_factor: f64) -> T1Accuracy {
+        let band = result.band.as_ref();
+        T1Accuracy {
+            t1_range: band.and_then(|b| b.t1_range),
+            t1_conservative: band.and_then(|b| b.t1_conservative),
+            band: band.map(|b| {
+                b.members
+                    .iter()
+                    .map(|(p, t)| (p.name().to_string(), *t))
+                    .collect()
+            }),
+            t1_steps: result.steps.as_ref().map(|c| {
+                c.steps
+                    .iter()
+                    .map(|(f, t)| (first_factor * f, *t))
+                    .collect()
+            }),
+            step_converged: result.steps.as_ref().map(|c| c.converged),
+        }
     }
 }
 

@@ -6,7 +6,7 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use clap::Args;
-use rocking::spectra::report::OasReport;
+use rocking::spectra::report::{OasReport, T1Accuracy};
 use rocking::spectra::{self, Oas};
 
 use super::sweep::{OasGridArgs, Shard, SimulationArgs};
@@ -50,6 +50,19 @@ pub struct OasArgs {
     /// With --svg: also write the charts as PNG.
     #[arg(long, requires = "svg")]
     pub png: bool,
+    /// Also t₁'s band, as `rocking t1 --band`: the OAS again with half the time step, the
+    /// level and the size grids shifted by half a cell and the other event locator; adds
+    /// `t1_range`, `t1_conservative` and `band` (four OAS more).
+    #[arg(long, conflicts_with_all = ["merge", "overlay", "shard"])]
+    pub band: bool,
+    /// The OAS converged in the time step, as `rocking t1` computes it: halved until two
+    /// successive t₁ agree within TOL (e.g. 0.1); the spectrum is the finest step's, with
+    /// `t1_steps` and `step_converged`. Without it, one OAS at the step rule.
+    #[arg(long, value_name = "TOL", conflicts_with_all = ["merge", "overlay", "shard"])]
+    pub converge_step: Option<f64>,
+    /// With --converge-step: the most halvings of the step.
+    #[arg(long, default_value_t = spectra::STEP_HALVINGS, requires = "converge_step")]
+    pub converge_halvings: usize,
 }
 
 /// Runs the command.
@@ -58,6 +71,7 @@ pub fn run(a: &OasArgs) -> Result<(), String> {
         return super::overlay::run(&a.overlay, a.svg.as_deref(), a.png);
     }
     let t0 = Instant::now();
+    let mut accuracy = T1Accuracy::default();
     let result = match &a.record {
         None => {
             let parts: Vec<OasReport> = a
@@ -71,11 +85,17 @@ pub fn run(a: &OasArgs) -> Result<(), String> {
             let record = super::sweep::read(path)?;
             let mut o = a.grid.options(&a.simulation);
             o.levels = a.shard.keep(&o.levels);
-            let bar = progress::bar(o.levels.len() as u64, "OAS");
+            let method = spectra::T1Method {
+                converge: a.converge_step.map(|tol| (tol, a.converge_halvings)),
+                band: a.band,
+            };
+            method.check().map_err(|e| e.to_string())?;
+            let bar = progress::bar((o.levels.len() * method.min_spectra()) as u64, "OAS");
             let tick = || bar.inc(1);
-            let r = spectra::oas(&record, &o, Some(&tick)).map_err(|e| e.to_string())?;
+            let r = spectra::t1_of(&record, &o, method, Some(&tick)).map_err(|e| e.to_string())?;
             bar.finish_and_clear();
-            r
+            accuracy = T1Accuracy::of(&r, a.simulation.dt_factor);
+            r.oas
         }
     };
     let seconds = t0.elapsed().as_secs_f64();
@@ -100,7 +120,9 @@ pub fn run(a: &OasArgs) -> Result<(), String> {
             );
         }
     } else {
-        print_json(&OasReport::of(&result, seconds))?;
+        let mut report = OasReport::of(&result, seconds);
+        report.accuracy = accuracy;
+        print_json(&report)?;
     }
     if let Some(prefix) = &a.svg {
         for (name, chart) in charts(&result) {

@@ -249,10 +249,10 @@ pub fn run(a: &T1Args) -> Result<(), String> {
                 f(s.f_min),
                 f(r.t_p)
             );
-            if let (Some([lo, hi]), Some(c)) = (r.t1_range, r.t1_conservative) {
+            if let (Some([lo, hi]), Some(c)) = (r.accuracy.t1_range, r.accuracy.t1_conservative) {
                 println!("    t1 band: {lo:.3}-{hi:.3} s, conservative {c:.3} s");
             }
-            if let (Some(steps), Some(ok)) = (&r.t1_steps, r.step_converged) {
+            if let (Some(steps), Some(ok)) = (&r.accuracy.t1_steps, r.accuracy.step_converged) {
                 let list: Vec<String> = steps
                     .iter()
                     .map(|(f, t)| match t {
