@@ -192,6 +192,14 @@ fn oas_band_and_converge_step_are_t1s() {
     let factor = format!("{}", row["dt_factor"].as_f64().unwrap());
     let finest = json(&["oas", "--dt-factor", &factor]);
     assert_eq!(oas["levels"], finest["levels"]);
+    // A suite of converged spectra: `rocking suite --merge` of such reports.
+    let file = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("oas-converged.json");
+    std::fs::write(&file, oas.to_string()).unwrap();
+    let (ok, out, err) = rocking(&["suite", "--merge", file.to_str().unwrap(), "--json"]);
+    assert!(ok, "{err}");
+    let suite: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(suite["records"][0]["summary"]["t1"], row["t1"]);
+    assert_eq!(suite["records"][0]["levels"], oas["levels"]);
     let plain = json(&["oas"]);
     for k in ["t1_range", "band", "t1_steps", "step_converged"] {
         assert!(plain.get(k).is_none(), "{k} in a plain oas");
