@@ -68,27 +68,24 @@ fn every_captured_output_is_unchanged() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
-#[test]
-fn t1_of_shared_records_is_unchanged() {
+/// `rocking t1 --json EXTRA…` of far-field records of `../shared` (`None`, with a note, when it
+/// is absent), checked against the rows of `stored` (a path from the root) in every field but the
+/// wall time; the rows computed.
+fn t1_of_shared_records_against(
+    names: &[&str],
+    extra: &[&str],
+    stored: &str,
+) -> Option<Vec<serde_json::Value>> {
     let shared = std::env::var_os("ROCKING_SHARED")
         .map(PathBuf::from)
         .unwrap_or_else(|| root().join("../shared"));
     let far = shared.join("records/fema-p695/farfield");
     if !far.exists() {
         println!("skipped: {} not found", far.display());
-        return;
+        return None;
     }
-    let names = [
-        "RSN953_NORTHR_MUL009",
-        "RSN1158_KOCAELI_DZC180",
-        "RSN960_NORTHR_LOS000",
-    ];
-    // The step rule's t₁ (the default before it converged in the step).
-    let mut args = vec![
-        "t1".to_string(),
-        "--json".to_string(),
-        "--single-step".to_string(),
-    ];
+    let mut args = vec!["t1".to_string(), "--json".to_string()];
+    args.extend(extra.iter().map(|a| a.to_string()));
     args.extend(
         names
             .iter()
@@ -97,22 +94,36 @@ fn t1_of_shared_records_is_unchanged() {
     let out = common::run(&args);
     assert!(out.ok, "{}", out.stderr);
     let got: serde_json::Value = serde_json::from_str(&out.stdout).unwrap();
-    let want: serde_json::Value = serde_json::from_str(
-        &std::fs::read_to_string(root().join("tests/golden/t1-farfield.json")).unwrap(),
-    )
-    .unwrap();
-    for row in got.as_array().unwrap() {
+    let want: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(root().join(stored)).unwrap()).unwrap();
+    let without_seconds = |r: &serde_json::Value| {
+        let mut r = r.clone();
+        r.as_object_mut().unwrap().remove("seconds");
+        r
+    };
+    let rows = got.as_array().unwrap().clone();
+    for row in &rows {
         let name = row["record"].as_str().unwrap();
         let w = want
             .as_array()
             .unwrap()
             .iter()
             .find(|r| r["record"] == name)
-            .unwrap_or_else(|| panic!("{name} not in the golden file"));
-        let mut row = row.clone();
-        row.as_object_mut().unwrap().remove("seconds");
-        assert_eq!(&row, w, "{name}");
+            .unwrap_or_else(|| panic!("{name} not in {stored}"));
+        assert_eq!(without_seconds(row), without_seconds(w), "{name}");
     }
+    Some(rows)
+}
+
+/// The step rule's t₁ (the default before it converged in the step) of three records.
+#[test]
+fn t1_of_shared_records_is_unchanged() {
+    let names = [
+        "RSN953_NORTHR_MUL009",
+        "RSN1158_KOCAELI_DZC180",
+        "RSN960_NORTHR_LOS000",
+    ];
+    t1_of_shared_records_against(&names, &["--single-step"], "tests/golden/t1-farfield.json");
 }
 
 /// t₁ converged in the step (`rocking t1`'s default) of two FEMA P695 records equals the stored
@@ -121,42 +132,11 @@ fn t1_of_shared_records_is_unchanged() {
 /// converges at a quarter (issue 14's case of a step rule too coarse for one record).
 #[test]
 fn t1_converged_of_shared_records_is_the_stored_one() {
-    let shared = std::env::var_os("ROCKING_SHARED")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| root().join("../shared"));
-    if !shared.join("records/fema-p695/farfield").exists() {
-        println!("skipped: {} not found", shared.display());
-        return;
-    }
     let names = ["RSN953_NORTHR_MUL279", "RSN960_NORTHR_LOS270"];
-    let mut args = vec!["t1".to_string(), "--json".to_string()];
-    args.extend(
-        names
-            .iter()
-            .map(|n| format!("../shared/records/fema-p695/farfield/{n}.AT2")),
-    );
-    let out = common::run(&args);
-    assert!(out.ok, "{}", out.stderr);
-    let got: serde_json::Value = serde_json::from_str(&out.stdout).unwrap();
-    let stored: serde_json::Value = serde_json::from_str(
-        &std::fs::read_to_string(root().join("docs/data/t1-dt/converge/farfield-converge.json"))
-            .unwrap(),
-    )
-    .unwrap();
-    for row in got.as_array().unwrap() {
-        let name = row["record"].as_str().unwrap();
-        let mut want = stored
-            .as_array()
-            .unwrap()
-            .iter()
-            .find(|r| r["record"] == name)
-            .unwrap_or_else(|| panic!("{name} not in the stored rows"))
-            .clone();
-        let mut row = row.clone();
-        row.as_object_mut().unwrap().remove("seconds");
-        want.as_object_mut().unwrap().remove("seconds");
-        assert_eq!(row, want, "{name}");
-    }
-    let steps = |i: usize| got[i]["t1_steps"].as_array().unwrap().len();
+    let stored = "docs/data/t1-dt/converge/farfield-converge.json";
+    let Some(rows) = t1_of_shared_records_against(&names, &[], stored) else {
+        return;
+    };
+    let steps = |i: usize| rows[i]["t1_steps"].as_array().unwrap().len();
     assert_eq!((steps(0), steps(1)), (3, 2));
 }
