@@ -14,7 +14,7 @@ use pyo3::types::PyInt;
 use rocking::driver::{EventLocator, Integrator};
 use rocking::ground::records::{self, PlainFormat, Record as CoreRecord};
 use rocking::model::single_block::EquivalentBlock;
-use rocking::spectra::report::{OasReport, OcReport, SuiteReport, T1Accuracy, T1Row, TpRow};
+use rocking::spectra::report::{OasReport, OcReport, SuiteReport, T1Row, TpRow};
 use rocking::spectra::{
     self, column_of_size, linear_levels, log_sizes, Oas, OasLevel, OasOptions, Oc, PulseShape,
     SizeSearch, SpectraError, SweepOptions,
@@ -194,8 +194,7 @@ pub fn _oas<'py>(
     let t0 = Instant::now();
     let result = spectra::t1_of_with(&o, method, |x| compute_oas(py, &record, x, &runner))?;
     let seconds = t0.elapsed().as_secs_f64();
-    let mut report = OasReport::of(&result.oas, seconds);
-    report.accuracy = T1Accuracy::of(&result, simulation.dt_factor);
+    let report = OasReport::of_t1(&result, seconds, simulation.dt_factor);
     Ok((to_python(py, &report)?, result.oas.i_cr()))
 }
 

@@ -120,6 +120,15 @@ impl OasReport {
         }
     }
 
+    /// The report of the spectrum of `result` ([`super::t1_of`]) with its band and steps, the
+    /// steps' dt factors relative to the record's step rule scaled by `first_factor`.
+    pub fn of_t1(result: &super::T1Result, seconds: f64, first_factor: f64) -> OasReport {
+        OasReport {
+            accuracy: T1Accuracy::of(result, first_factor),
+            ..OasReport::of(&result.oas, seconds)
+        }
+    }
+
     /// Rebuilds an OAS from reports of level shards: their levels, in level order, on the first
     /// one's grid and settings (`None` when there is nothing to merge).
     pub fn merge(parts: Vec<OasReport>) -> Option<Oas> {

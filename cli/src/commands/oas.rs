@@ -6,7 +6,7 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use clap::Args;
-use rocking::spectra::report::{OasReport, T1Accuracy};
+use rocking::spectra::report::OasReport;
 use rocking::spectra::{self, Oas};
 
 use super::sweep::{OasGridArgs, Shard, SimulationArgs};
@@ -71,15 +71,19 @@ pub fn run(a: &OasArgs) -> Result<(), String> {
         return super::overlay::run(&a.overlay, a.svg.as_deref(), a.png);
     }
     let t0 = Instant::now();
-    let mut accuracy = T1Accuracy::default();
-    let result = match &a.record {
+    // The spectrum with its band and steps when computed (a merged one has neither).
+    let t1 = match &a.record {
         None => {
             let parts: Vec<OasReport> = a
                 .merge
                 .iter()
                 .map(|p| read_json(p))
                 .collect::<Result<_, _>>()?;
-            OasReport::merge(parts).ok_or("nothing to merge")?
+            spectra::T1Result {
+                oas: OasReport::merge(parts).ok_or("nothing to merge")?,
+                steps: None,
+                band: None,
+            }
         }
         Some(path) => {
             let record = super::sweep::read(path)?;
@@ -94,10 +98,10 @@ pub fn run(a: &OasArgs) -> Result<(), String> {
             let tick = || bar.inc(1);
             let r = spectra::t1_of(&record, &o, method, Some(&tick)).map_err(|e| e.to_string())?;
             bar.finish_and_clear();
-            accuracy = T1Accuracy::of(&r, a.simulation.dt_factor);
-            r.oas
+            r
         }
     };
+    let result = &t1.oas;
     let seconds = t0.elapsed().as_secs_f64();
     if a.csv {
         println!("record,level,size,p,f,simulations");
@@ -120,12 +124,10 @@ pub fn run(a: &OasArgs) -> Result<(), String> {
             );
         }
     } else {
-        let mut report = OasReport::of(&result, seconds);
-        report.accuracy = accuracy;
-        print_json(&report)?;
+        print_json(&OasReport::of_t1(&t1, seconds, a.simulation.dt_factor))?;
     }
     if let Some(prefix) = &a.svg {
-        for (name, chart) in charts(&result) {
+        for (name, chart) in charts(result) {
             chart.write_named(prefix, name, a.png)?;
         }
     }
