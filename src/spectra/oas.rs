@@ -80,6 +80,13 @@ impl Default for OasOptions {
 }
 
 impl OasOptions {
+    /// The same options with the time step rule scaled by `factor` (`0.5`: half the step).
+    pub fn at_step(&self, factor: f64) -> OasOptions {
+        let mut o = self.clone();
+        o.sweep.time_step = o.sweep.time_step.scaled(factor);
+        o
+    }
+
     pub(super) fn validate(&self) -> Result<(), SpectraError> {
         self.sweep.validate()?;
         positive("slenderness", self.slenderness)?;

@@ -212,9 +212,7 @@ pub fn t1_of_with<E>(
     };
     let factor = steps.as_ref().map_or(1.0, StepConvergence::factor);
     let (oas, band) = if method.band {
-        let mut at = options.clone();
-        at.sweep.time_step = at.sweep.time_step.scaled(factor);
-        let (oas, band) = super::band::t1_band_around(oas, &at, spectrum)?;
+        let (oas, band) = super::band::t1_band_around(oas, &options.at_step(factor), spectrum)?;
         (oas, Some(band))
     } else {
         (oas, None)

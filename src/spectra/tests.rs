@@ -354,8 +354,7 @@ fn t1_of_converges_by_default_and_takes_the_band_at_the_rows_step() {
     assert_eq!(banded.oas, r.oas);
     let n = steps.steps.len();
     assert_eq!(asked.len(), n + 4);
-    let mut at = grid.clone();
-    at.sweep.time_step = at.sweep.time_step.scaled(factor);
+    let at = grid.at_step(factor);
     for (k, p) in Perturbation::ALL[1..].iter().enumerate() {
         assert_eq!(asked[n + k], p.apply(&at), "{p:?}");
     }

@@ -155,10 +155,7 @@ pub fn run(args: &SpectraBenchArgs) -> Result<(), String> {
     let mut full_options = options.clone();
     full_options.sweep.simulation.stopping.stop_when_safe = false;
     full_options.sweep.simulation.stopping.stop_when_safe_column = false;
-    let mut scaled_options = options.clone();
-    if let Some(f) = args.dt_factor {
-        scaled_options.sweep.time_step = options.sweep.time_step.scaled(f);
-    }
+    let scaled_options = options.at_step(args.dt_factor.unwrap_or(1.0));
     let load_before = load_average();
     let bar = progress::bar(records.len() as u64, "OAS");
     let mut rows = Vec::new();

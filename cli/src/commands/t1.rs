@@ -176,9 +176,7 @@ pub fn run(a: &T1Args) -> Result<(), String> {
             );
             let governing = if a.explain {
                 // The governing point's run at the row's step.
-                let mut o_row = o.clone();
-                o_row.sweep.time_step = o_row.sweep.time_step.scaled(result.factor());
-                governing(&record, &row.summary, &o_row)?
+                governing(&record, &row.summary, &o.at_step(result.factor()))?
             } else {
                 None
             };
@@ -219,11 +217,7 @@ pub fn run(a: &T1Args) -> Result<(), String> {
                 }
                 let record = super::sweep::read(std::path::Path::new(file_of(r)))?;
                 // The governing point's run at the row's own step (the finest when converged).
-                let mut o_row = o.clone();
-                o_row.sweep.time_step = o_row
-                    .sweep
-                    .time_step
-                    .scaled(r.dt_factor / a.simulation.dt_factor);
+                let o_row = o.at_step(r.dt_factor / a.simulation.dt_factor);
                 r.governing = governing(&record, &r.summary, &o_row)?;
             }
         }
