@@ -13,10 +13,12 @@
 //! `L_k` (admissible `>= 0`). A column is the open chain with `n = +y` at every joint.
 
 pub mod arch;
+mod closure;
 pub mod colonnade;
 pub mod system;
 #[cfg(test)]
 mod tests;
+mod velocity;
 
 use crate::validate::{self, InvalidValue};
 
@@ -485,164 +487,5 @@ impl Chain {
                 s0 * cross(sub(pose.suffix_centre[k], self.pivot(pose, a)), f)
             })
             .collect()
-    }
-
-    /// Closure matrix `G` (row-major `3 × 2J`; empty for an open chain): the column of DOF `a`
-    /// is the planar twist `(1, P_y, −P_x)` of a unit rotation about its pivot (rotation rate;
-    /// velocity of the material point at the origin). Around a loop `G v = 0`.
-    pub fn closure_matrix(&self, pose: &ChainPose) -> Vec<f64> {
-        if !self.is_loop() {
-            return Vec::new();
-        }
-        let m = self.n_dofs();
-        let mut g = vec![0.0; 3 * m];
-        for a in 0..m {
-            let p = self.pivot(pose, a);
-            g[a] = 1.0;
-            g[m + a] = p[1];
-            g[2 * m + a] = -p[0];
-        }
-        g
-    }
-
-    /// `Ġ v` (length 3; empty for an open chain) for the DOF rates `rates`: the pivots move with
-    /// the bodies, `Ġ v = Σ_a v_a (0, Ṗ_a,y, −Ṗ_a,x)` with `Ṗ_a` the velocity of DOF `a`'s pivot
-    /// as a material point of the body before its joint. The accelerations of a loop obey
-    /// `G a = −Ġ v`.
-    pub fn closure_rate(&self, pose: &ChainPose, rates: &[f64]) -> Vec<f64> {
-        if !self.is_loop() {
-            return Vec::new();
-        }
-        self.closure_rate_of(pose, rates).to_vec()
-    }
-
-    /// [`Chain::closure_rate`] of a loop, without allocation.
-    pub fn closure_rate_of(&self, pose: &ChainPose, rates: &[f64]) -> [f64; 3] {
-        let nj = self.n_joints();
-        assert_eq!(rates.len(), 2 * nj);
-        // Twist of the body before joint k: rotation rate and velocity at the origin.
-        let mut omega = 0.0;
-        let mut v0 = [0.0_f64; 2];
-        let mut out = [0.0; 3];
-        for k in 0..nj {
-            for (a, p) in [(k, pose.right_pivots[k]), (nj + k, pose.left_pivots[k])] {
-                let va = rates[a];
-                if va != 0.0 {
-                    let pdot = [v0[0] - omega * p[1], v0[1] + omega * p[0]];
-                    out[1] += va * pdot[1];
-                    out[2] -= va * pdot[0];
-                }
-            }
-            for (a, p) in [(k, pose.right_pivots[k]), (nj + k, pose.left_pivots[k])] {
-                let va = rates[a];
-                omega += va;
-                v0 = [v0[0] + va * p[1], v0[1] - va * p[0]];
-            }
-        }
-        out
-    }
-
-    /// Position-level closure residual of a loop (zeros for an open chain): the rotation of the
-    /// right support implied by the angles and the displacement of the last joint's centre,
-    /// `(angle, dx, dy)`. Zero when the last body sits back on its support.
-    pub fn closure_residual(&self, pose: &ChainPose) -> [f64; 3] {
-        if !self.is_loop() {
-            return [0.0; 3];
-        }
-        let o = self.joints[self.n_joints() - 1].centre;
-        let moved = pose.support.apply(o);
-        [pose.support.angle, moved[0] - o[0], moved[1] - o[1]]
-    }
-
-    /// Velocity-dependent generalised forces that thesis Eq. 6 leaves out (centripetal terms of
-    /// the exact Lagrangian equations), as [`crate::model::column::Column::velocity_load_into`]:
-    /// with `φ̈ = 0` every body still accelerates, `a(x) = a(P) − ω² (x − P)` for two points of
-    /// the same body, and the generalised force is `−Σ_{j after joint} m_j (c_j − P_a) × a(c_j)`.
-    /// The exact equations of the cut chain are `M φ̈ = q + this (+ Gᵀ λ in a loop)`.
-    pub fn velocity_load(&self, pose: &ChainPose, phi: &[f64], rates: &[f64]) -> Vec<f64> {
-        let mut out = vec![0.0; self.n_dofs()];
-        self.velocity_load_into(pose, phi, rates, &mut out, &mut Vec::new());
-        out
-    }
-
-    /// [`Chain::velocity_load`] into `out` (length `2J`), with the suffix sums
-    /// `Σ_{j after joint} m_j c_j × a_j` and `Σ m_j a_j` kept in `scratch` (reused memory):
-    /// `f_a = −(Σ m_j c_j × a_j − P_a × Σ m_j a_j)`, linear in the number of bodies.
-    pub fn velocity_load_into(
-        &self,
-        pose: &ChainPose,
-        phi: &[f64],
-        rates: &[f64],
-        out: &mut [f64],
-        scratch: &mut Vec<[f64; 2]>,
-    ) {
-        assert_eq!(out.len(), 2 * self.n_joints());
-        self.velocity_load_sums(pose, phi, rates, scratch);
-        for (d, o) in out.iter_mut().enumerate() {
-            *o = self.velocity_load_entry(pose, scratch, d);
-        }
-    }
-
-    /// Entry `d` of [`Chain::velocity_load_into`] from the sums [`Chain::velocity_load_sums`]
-    /// left in `scratch` (the same arithmetic): for the DOFs a caller reads, not all `2J`.
-    #[inline]
-    pub fn velocity_load_entry(&self, pose: &ChainPose, scratch: &[[f64; 2]], d: usize) -> f64 {
-        let (nj, nb) = (self.n_joints(), self.n_bodies());
-        let (centre_acc, sums) = scratch.split_at(nb + 1);
-        let k = (if d < nj { d } else { d - nj }).min(nb);
-        let p = self.pivot(pose, d);
-        -(centre_acc[k][0] - cross(p, sums[k]))
-    }
-
-    /// The suffix sums of [`Chain::velocity_load_into`] into `scratch` (length `2 (bodies + 1)`).
-    pub fn velocity_load_sums(
-        &self,
-        pose: &ChainPose,
-        phi: &[f64],
-        rates: &[f64],
-        scratch: &mut Vec<[f64; 2]>,
-    ) {
-        let (nj, nb) = (self.n_joints(), self.n_bodies());
-        assert_eq!(rates.len(), 2 * nj);
-        assert_eq!(phi.len(), 2 * nj);
-        scratch.clear();
-        scratch.resize(2 * (nb + 1), [0.0; 2]);
-        let (centre_acc, sums) = scratch.split_at_mut(nb + 1);
-        let mut omega = 0.0_f64;
-        let mut hinge = [0.0_f64, 0.0];
-        let mut hinge_acc = [0.0_f64, 0.0];
-        for j in 0..nb {
-            let use_right = phi[j] != 0.0 || (phi[nj + j] == 0.0 && rates[j] != 0.0);
-            let p = if use_right {
-                pose.right_pivots[j]
-            } else {
-                pose.left_pivots[j]
-            };
-            let acc_p = [
-                hinge_acc[0] - omega * omega * (p[0] - hinge[0]),
-                hinge_acc[1] - omega * omega * (p[1] - hinge[1]),
-            ];
-            omega += rates[j] + rates[nj + j];
-            let c = pose.centres[j];
-            centre_acc[j] = [
-                acc_p[0] - omega * omega * (c[0] - p[0]),
-                acc_p[1] - omega * omega * (c[1] - p[1]),
-            ];
-            hinge = p;
-            hinge_acc = acc_p;
-        }
-        // Backwards: sums[k] = Σ_{j>=k} m_j a_j, and centre_acc[k], once read, becomes
-        // (Σ_{j>=k} m_j c_j × a_j, 0).
-        let (mut moment, mut force) = (0.0_f64, [0.0_f64; 2]);
-        centre_acc[nb] = [0.0, 0.0];
-        sums[nb] = [0.0, 0.0];
-        for j in (0..nb).rev() {
-            let m = self.bodies[j].mass;
-            let (c, a) = (pose.centres[j], centre_acc[j]);
-            moment += m * cross(c, a);
-            force = [force[0] + m * a[0], force[1] + m * a[1]];
-            centre_acc[j] = [moment, 0.0];
-            sums[j] = force;
-        }
     }
 }
