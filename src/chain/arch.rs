@@ -82,6 +82,16 @@ impl VoussoirArch {
                 "must be at least 1",
             ));
         }
+        // The rule's text names the maximum; keep it in step with the constant.
+        const _: () = assert!(crate::model::configuration::MAX_INTERFACES == 4096);
+        if self.voussoirs >= crate::model::configuration::MAX_INTERFACES {
+            return Err(InvalidValue::new(
+                "arch.voussoirs",
+                self.voussoirs,
+                "must be at most 4095 (its voussoirs + 1 joints are at most the models' \
+                 supported maximum of 4096 interfaces)",
+            ));
+        }
         validate::positive("arch.density", self.density)?;
         validate::positive("arch.depth", self.depth)?;
         Ok(())

@@ -107,10 +107,21 @@ pub(super) fn build(
         |v: crate::validate::InvalidValue| err(&v.field, format!("{}: {}", v.value, v.rule));
     let (shape, chain) = match (spec.arch, spec.colonnade) {
         (Some(a), None) => {
+            // In degrees here (the library's `VoussoirArch` takes radians): say so in its unit.
+            let embrace = a.embrace_angle.unwrap_or(180.0);
+            if !(embrace > 0.0 && embrace < 360.0) {
+                return Err(err(
+                    "arch.embrace_angle",
+                    format!(
+                        "{embrace}: must be greater than 0 and less than 360 degrees (a full \
+                         ring has no abutments)"
+                    ),
+                ));
+            }
             let arch = VoussoirArch {
                 radius: a.radius,
                 thickness: a.thickness,
-                embrace_angle: a.embrace_angle.unwrap_or(180.0).to_radians(),
+                embrace_angle: embrace.to_radians(),
                 voussoirs: a.voussoirs,
                 density: a.density.unwrap_or(2000.0),
                 depth: a.depth.unwrap_or(1.0),

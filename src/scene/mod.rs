@@ -512,4 +512,59 @@ mod tests {
             assert!(e.0.contains("min_flight"), "{bad}: {}", e.0);
         }
     }
+
+    /// Sizes beyond the models' maximum are refused by name before anything is allocated for
+    /// them (a column of 10⁵ blocks asked the driver for 80 GB and aborted), and an arch's angle
+    /// of embrace is judged in the degrees the scene gives it in.
+    #[test]
+    fn oversized_and_out_of_range_shapes_are_named() {
+        let load = |text: &str| -> Result<AnyScene, SceneError> {
+            let spec: SceneSpec =
+                serde_json::from_str(text).map_err(|e| SceneError(e.to_string()))?;
+            build_any(spec, Path::new("."), "test")
+        };
+        let max = crate::model::configuration::MAX_INTERFACES;
+        let column = |n: usize| {
+            let blocks = vec![r#"{"width": 1, "height": 1, "mass": 2500}"#; n].join(",");
+            format!(
+                r#"{{"blocks": [{blocks}], "excitation": {{"type": "none"}},
+                    "duration": 0.01, "dt": 0.001}}"#
+            )
+        };
+        assert!(matches!(load(&column(max)), Ok(AnyScene::Column(_))));
+        let e = load(&column(max + 1)).err().expect("accepted");
+        assert!(
+            e.0.starts_with("blocks: ") && e.0.contains(&format!("{}", max + 1)),
+            "{}",
+            e.0
+        );
+        let arch = |fields: &str| {
+            format!(
+                r#"{{"arch": {{"radius": 5, "thickness": 0.75, {fields}}},
+                    "excitation": {{"type": "none"}}, "duration": 0.01, "dt": 0.001}}"#
+            )
+        };
+        let e = load(&arch(&format!(r#""voussoirs": {max}"#)))
+            .err()
+            .expect("accepted");
+        assert!(
+            e.0.contains("arch.voussoirs") && e.0.contains("4095"),
+            "{}",
+            e.0
+        );
+        for bad in ["400", "360", "0", "-90"] {
+            let text = arch(&format!(r#""voussoirs": 8, "embrace_angle": {bad}"#));
+            let e = load(&text)
+                .err()
+                .unwrap_or_else(|| panic!("accepted {bad}"));
+            assert!(
+                e.0.contains("arch.embrace_angle")
+                    && e.0.contains(&format!("{bad}: "))
+                    && e.0.contains("360 degrees"),
+                "{}",
+                e.0
+            );
+        }
+        assert!(load(&arch(r#""voussoirs": 8, "embrace_angle": 359"#)).is_ok());
+    }
 }

@@ -79,17 +79,41 @@ pub fn run(a: &SimulateArgs) -> Result<(), String> {
         chart(&scene, &outcome)?.write(p)?;
     }
     println!(
-        "{}: {} at t = {:.4} s, {} impacts, {} events; peak block rotations {:?} rad ({:.3} s wall) -> {}",
+        "{}: {} at t = {:.4} s, {} impacts, {} events; {} ({:.3} s wall) -> {}",
         scene.title,
         stop_text(&outcome.stop_reason),
         outcome.t_end,
         outcome.impacts,
         outcome.events.len(),
-        outcome.peak_block_rotation.iter().map(|v| (v * 1e4).round() / 1e4).collect::<Vec<_>>(),
+        peaks_text(&outcome.peak_block_rotation),
         wall,
         out.display()
     );
     Ok(())
+}
+
+/// The peak block rotations for the summary line: every block's of a short column, the largest
+/// of a long one (all of them are in `summary.json`).
+fn peaks_text(peaks: &[f64]) -> String {
+    const LISTED: usize = 12;
+    if peaks.len() <= LISTED {
+        let rounded: Vec<f64> = peaks.iter().map(|v| (v * 1e4).round() / 1e4).collect();
+        return format!("peak block rotations {rounded:?} rad");
+    }
+    let (block, peak) = peaks
+        .iter()
+        .enumerate()
+        .fold((0, 0.0_f64), |(kb, pb), (k, &p)| {
+            if p.abs() > pb.abs() {
+                (k, p)
+            } else {
+                (kb, pb)
+            }
+        });
+    format!(
+        "largest peak block rotation {peak:.4e} rad (block {block} of {}; all in summary.json)",
+        peaks.len()
+    )
 }
 
 /// The history as CSV: per interface its signed angle and rate (`phĭ + phî`), per block its

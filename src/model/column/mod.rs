@@ -64,6 +64,17 @@ pub enum ColumnError {
     /// A column needs at least one block.
     #[error("a column needs at least one block")]
     Empty,
+    /// More blocks than the models' supported maximum of interfaces
+    /// ([`crate::model::configuration::MAX_INTERFACES`]), refused before anything is allocated
+    /// for them.
+    #[error(
+        "{blocks} blocks: a column has at most {} (one interface per block)",
+        crate::model::configuration::MAX_INTERFACES
+    )]
+    TooManyBlocks {
+        /// The number of blocks given.
+        blocks: usize,
+    },
     /// A block's field (`width`, `height`, `mass`, `inertia`, `contact_width`) is not a finite
     /// number greater than zero, or the contact is wider than the blocks it joins.
     #[error("block {block}: {invalid}")]
@@ -92,6 +103,11 @@ impl Column {
     pub fn new(blocks: Vec<Block>) -> Result<Column, ColumnError> {
         if blocks.is_empty() {
             return Err(ColumnError::Empty);
+        }
+        if blocks.len() > crate::model::configuration::MAX_INTERFACES {
+            return Err(ColumnError::TooManyBlocks {
+                blocks: blocks.len(),
+            });
         }
         let at = |block: usize| move |invalid| ColumnError::InvalidBlock { block, invalid };
         let mut half_contact = Vec::with_capacity(blocks.len());

@@ -126,6 +126,13 @@ fn velocity_load_matches_finite_differences() {
 #[test]
 fn rejects_bad_blocks() {
     assert_eq!(Column::new(vec![]), Err(ColumnError::Empty));
+    let max = crate::model::configuration::MAX_INTERFACES;
+    let block = Block::rectangle(1.0, 1.0, 2500.0);
+    assert!(Column::new(vec![block; max]).is_ok());
+    assert_eq!(
+        Column::new(vec![block; max + 1]),
+        Err(ColumnError::TooManyBlocks { blocks: max + 1 })
+    );
     let e = Column::new(vec![Block::rectangle(1.0, f64::NAN, 1.0)]).unwrap_err();
     assert!(e.to_string().contains("height"));
     let mut b = Block::rectangle(1.0, 1.0, 1.0);
