@@ -81,3 +81,28 @@ fn run_time_errors_name_the_file() {
     assert!(out.is_empty());
     assert!(err.contains("no-such-record.AT2"), "{err}");
 }
+
+/// A JSON report given where a record is expected (e.g. `rocking suite a.json` for `--merge`):
+/// the parse error says what a record is and where reports go.
+#[test]
+fn a_report_given_as_a_record_is_named_as_such() {
+    let dir = std::env::temp_dir().join(format!("rocking-args-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let report = dir.join("synthetic.json");
+    std::fs::write(&report, "{\"record\": \"synthetic\"}\n").unwrap();
+    let path = report.to_str().unwrap();
+    for cmd in ["suite", "oas", "tp"] {
+        let (code, out, err) = rocking(&[cmd, path]);
+        assert_eq!(code, 1, "{cmd}: {err}");
+        assert!(out.is_empty(), "{cmd}: {out}");
+        assert!(
+            err.contains("synthetic, line 1") && err.contains("not JSON reports"),
+            "{cmd}: {err}"
+        );
+    }
+    let plain = dir.join("synthetic.txt");
+    std::fs::write(&plain, "{\n").unwrap();
+    let (_, _, err) = rocking(&["oas", plain.to_str().unwrap()]);
+    assert!(!err.contains("JSON"), "{err}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}

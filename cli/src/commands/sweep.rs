@@ -88,9 +88,19 @@ pub fn set_threads(n: usize) {
         .build_global();
 }
 
-/// Reads a record (PEER `.AT2`, or plain text in m/s²).
+/// Reads a record (PEER `.AT2`, or plain text in m/s²). A `.json` file that does not parse as a
+/// record is most likely a report given where a record was expected: the error says so.
 pub fn read(path: &Path) -> Result<Record, String> {
-    read_record(path, &PlainFormat::default()).map_err(|e| e.to_string())
+    read_record(path, &PlainFormat::default()).map_err(|e| {
+        let json = path
+            .extension()
+            .is_some_and(|x| x.to_string_lossy().eq_ignore_ascii_case("json"));
+        if json {
+            format!("{e} (records are .AT2 or plain text in m/s², not JSON reports; `suite`, `t1` and `oas` join reports with --merge)")
+        } else {
+            e.to_string()
+        }
+    })
 }
 
 /// The settings of every simulation of a sweep.
