@@ -14,9 +14,8 @@ use rocking::spectra::{
     self, characteristic_arch_oas, linear_levels, log_sizes, ArchOas, ArchOasOptions, ArchRecord,
     ArchShape, ArchSweepOptions, OasLevel,
 };
-use rocking::validate;
 
-use crate::errors::value_error;
+use crate::errors::{positive, value_error};
 use crate::json::to_python;
 use crate::spectra::{fractiles_of, record_of, shape_of, spectra_error};
 use crate::sweep::Runner;
@@ -38,11 +37,6 @@ fn count(name: &str, n: i64) -> PyResult<usize> {
         .ok()
         .filter(|&n| n >= 1)
         .ok_or_else(|| value_error(format!("{name} = {n}: must be >= 1")))
-}
-
-/// A positive finite number, named.
-fn positive(name: &str, v: f64) -> PyResult<f64> {
-    validate::positive(name, v).map_err(value_error)
 }
 
 impl Family {

@@ -70,3 +70,8 @@ pub fn error_codes() -> Vec<(&'static str, i32)> {
         .chain(ErrorKind::ALL.iter().map(|k| (k.c_name(), k.code())))
         .collect()
 }
+
+/// A positive finite number, named (`rocking::validate::positive`'s rule).
+pub fn positive(name: &str, v: f64) -> PyResult<f64> {
+    rocking::validate::positive(name, v).map_err(value_error)
+}

@@ -142,6 +142,9 @@ def test_design_errors_name_the_argument():
         (dict(blocks=0), "blocks"),
         (dict(threads=0), "threads"),
         (dict(levels=[[1.0, 2.0]]), "levels"),
+        (dict(level_max=float("nan")), "level_max = NaN"),
+        (dict(size_min=0.0), "size_min = 0.0"),
+        (dict(size_max=float("inf")), "size_max = inf"),
     ],
 )
 def test_oas_errors_name_the_argument(root, args, field):
