@@ -82,6 +82,9 @@ mod driver;
 #[path = "arch_dynamics/colonnade.rs"]
 mod colonnade;
 
+#[path = "arch_dynamics/energy.rs"]
+mod energy;
+
 // ---------------------------------------------------------------------------------------------
 // The multi-block loop with the four hinges open.
 // ---------------------------------------------------------------------------------------------

@@ -142,7 +142,9 @@ class LoopSimulation(_Run):
     columns of ``history.csv``). ``events``: the objects of ``events.jsonl`` (``t``, ``kind``:
     opening, closing, locked, settled, collapsed; ``statuses`` after; a closing's ``joints``,
     ``kinetic_before``, ``kinetic_after``). ``summary``: ``summary.json`` (``collapsed``,
-    ``peak_angle``, ``hinges`` as ``[joint, face]``, ``max_closure_residual``, …).
+    ``peak_angle``, ``hinges`` as ``[joint, face]``, ``max_closure_residual``, ``energy``: the
+    ground's work, the kinetic energy lost at closings and settlings, the kinetic energy at the
+    start and end, the change of potential energy, and the balance's ``residual``, …).
     """
 
     def __init__(self, raw):

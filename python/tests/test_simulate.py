@@ -255,6 +255,12 @@ def test_an_arch_and_a_colonnade_run_as_the_cli(root, tmp_path):
         assert "\n".join(lines) + "\n" == (out / "history.csv").read_text()
         assert r.collapsed and r.t_end < 3.0 and len(r.events_of("collapsed")) == 1
         assert r.hinges and all(face in (-1, 1) for _, face in r.hinges)
+        # The energy balance closes to the scheme's error (docs/arches.md, "Energy balance").
+        e = summary["energy"]
+        terms = [e["ground_work"], e["dissipated"], e["kinetic_end"], e["potential_change"]]
+        assert e["residual"] == pytest.approx(e["ground_work"] - e["dissipated"] - e["kinetic_end"]
+                                              + e["kinetic_start"] - e["potential_change"], abs=1e-9)
+        assert abs(e["residual"]) < 1e-4 * max(abs(x) for x in terms)
     # The arch's first mechanism (docs/arches.md 2c): joints 3, 15, 9, 20 open first.
     arch = rocking.simulate(root / "examples/scenes/arch_half_sine.json")
     first = arch.events_of("opening")[0]

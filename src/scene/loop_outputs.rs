@@ -9,7 +9,7 @@ use serde::Serialize;
 use serde_json::{json, Value};
 
 use super::LoopScene;
-use crate::driver::closed::{LoopEventKind, LoopOutcome};
+use crate::driver::closed::{LoopEnergy, LoopEventKind, LoopOutcome};
 
 /// What a loop run reports (`summary.json`).
 #[derive(Debug, Serialize)]
@@ -33,6 +33,8 @@ pub struct LoopSummary<'a> {
     pub max_closure_residual: f64,
     /// Largest closure residual one step leaves before the projection (m).
     pub max_step_drift: f64,
+    /// The energy balance (J) and its residual, the scheme's error.
+    pub energy: LoopEnergyReport,
     /// The driver's time step (s).
     pub dt: f64,
     /// The scene's `min_flight` (steps), when set above zero (absent: the default, 0).
@@ -40,6 +42,14 @@ pub struct LoopSummary<'a> {
     pub min_flight: Option<f64>,
     /// Wall-clock time of the run (s).
     pub wall_time_s: f64,
+}
+
+/// [`LoopEnergy`] with its residual.
+#[derive(Debug, Serialize)]
+pub struct LoopEnergyReport {
+    #[serde(flatten)]
+    pub balance: LoopEnergy,
+    pub residual: f64,
 }
 
 impl<'a> LoopSummary<'a> {
@@ -67,6 +77,10 @@ impl<'a> LoopSummary<'a> {
             statuses_end: o.state.statuses.iter().map(|s| s.as_i8()).collect(),
             max_closure_residual: o.max_closure_residual,
             max_step_drift: o.max_step_drift,
+            energy: LoopEnergyReport {
+                balance: o.energy,
+                residual: o.energy.residual(),
+            },
             dt: scene.options.dt,
             min_flight: (scene.options.min_flight > 0.0).then_some(scene.options.min_flight),
             wall_time_s,

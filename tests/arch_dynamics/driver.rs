@@ -5,7 +5,7 @@ use super::*;
 
 /// The closed arch moving in the four-hinge mechanism with `θ̇(0) = rate0` (the hinge rates
 /// from DeJong's velocity analysis), as the driver's start state.
-fn moving_start(lp: &Loop, rate0: f64) -> LoopState {
+pub(super) fn moving_start(lp: &Loop, rate0: f64) -> LoopState {
     let h = FourHinge::new().closed_hinge_rates(rate0);
     let mut start = LoopState::at_rest(&lp.chain);
     start.rates = lp.full(&h);
@@ -64,7 +64,7 @@ fn driver_reproduces_dejong_closures() {
 }
 /// A half-sine pulse pushing +x (`a_g < 0`), `factor` × the static collapse multiplier of this
 /// arch (λ = 0.148875, tests/arch_statics.rs), lasting `tp`, from rest.
-fn pulse_run(
+pub(super) fn pulse_run(
     factor: f64,
     tp: f64,
     duration: f64,

@@ -24,6 +24,8 @@ pub(super) struct Located<'s> {
     pub crossings: &'s [(usize, f64)],
     pub first: f64,
     pub dt: f64,
+    /// The ground's power at the step's start (for the work up to the closing).
+    pub power_start: f64,
 }
 
 impl Runner<'_> {
@@ -39,6 +41,7 @@ impl Runner<'_> {
             crossings,
             first,
             dt,
+            power_start,
         } = *step;
         let motion = self.motion;
         let ag = |t: f64| motion.acceleration(t);
@@ -99,6 +102,9 @@ impl Runner<'_> {
         } else {
             (self.last_event_time, self.stalled) = (s.time, 0);
         }
+        // The ground's work up to the closing, on the located part of the step.
+        let power_event = self.ground_power_posed(&pose, &s.rates, s.time);
+        self.out.energy.ground_work += 0.5 * first * dt * (power_start + power_event);
         let before = self.kinetic_posed(&pose, &s.rates);
         self.max_kinetic = self.max_kinetic.max(before);
         let (statuses_before, rates_before) = (s.statuses.clone(), s.rates.clone());
@@ -156,6 +162,7 @@ impl Runner<'_> {
                 },
             );
         }
+        self.out.energy.dissipated += report.kinetic_before - kinetic_after;
         Ok(kinetic_after)
     }
 

@@ -18,6 +18,8 @@ impl Runner<'_> {
         let n = self.chain.n_joints();
         let open_after = s.statuses.iter().filter(|st| st.is_open()).count();
         if kinetic_after <= opts.settle_ratio * self.max_kinetic || open_after < 4 {
+            // At rest: what kinetic energy was left is lost.
+            self.out.energy.dissipated += kinetic_after;
             s.rates.iter_mut().for_each(|r| *r = 0.0);
             // At rest a hair from closure (no point displaced by more than
             // `SNAP_DISTANCE`: the round-off of the closure projection), the loop is

@@ -75,6 +75,7 @@
 
 mod closing;
 mod collapse;
+mod energy;
 mod equations;
 mod locate;
 mod opening;
@@ -83,6 +84,7 @@ mod state;
 #[cfg(test)]
 mod tests;
 
+pub use energy::LoopEnergy;
 pub use equations::LoopEquations;
 use projection::project_positions_posed;
 pub use projection::{project_positions, project_rates};
@@ -172,6 +174,9 @@ struct Runner<'a> {
     /// The time of the last closing and how many closings in a row happened at it.
     last_event_time: f64,
     stalled: usize,
+    /// Power of the ground motion's load at the current state, when known (the end of the last
+    /// step; `None` after an event changed the rates).
+    power: Option<f64>,
     out: LoopOutcome,
 }
 
@@ -200,6 +205,7 @@ impl<'a> Runner<'a> {
             max_kinetic: 0.0,
             last_event_time: f64::NAN,
             stalled: 0,
+            power: None,
             out: LoopOutcome {
                 events: Vec::new(),
                 state: LoopState::at_rest(chain),
@@ -210,6 +216,7 @@ impl<'a> Runner<'a> {
                 history: Vec::new(),
                 moving_checks: 0,
                 screened: 0,
+                energy: LoopEnergy::default(),
             },
         }
     }
@@ -271,6 +278,8 @@ impl<'a> Runner<'a> {
         self.potential_tolerance = 1e-12 * opts.gravity * self.chain.total_mass() * self.reach;
         let mut steps = 0usize;
         self.max_kinetic = self.kinetic(&s);
+        self.out.energy.kinetic_start = self.max_kinetic + 0.0; // `+ 0.0`: no negative zero
+        let potential_start = self.potential(&s.phi);
         if opts.record_every > 0 {
             self.out.history.push((s.time, s.phi.clone()));
         }
@@ -312,6 +321,7 @@ impl<'a> Runner<'a> {
                     s.statuses.clone(),
                     self.out.events.len(),
                     self.out.history.len(),
+                    self.out.energy,
                 )
             });
             if at_rest && !self.opening(&mut s, ag_now)? {
@@ -323,6 +333,11 @@ impl<'a> Runner<'a> {
                 s.time += dt;
                 continue;
             }
+            // The ground's power at the step's start (zero from rest).
+            let power_start = match self.power {
+                Some(p) => p,
+                None => self.ground_power(&s),
+            };
             let open = s.open_dofs();
             let x: Vec<f64> = open.iter().map(|&d| s.phi[d]).collect();
             let v: Vec<f64> = open.iter().map(|&d| s.rates[d]).collect();
@@ -354,9 +369,11 @@ impl<'a> Runner<'a> {
                     crossings: &crossings,
                     first,
                     dt,
+                    power_start,
                 };
                 let kinetic_after = self.close(&mut s, &step)?;
                 self.settle(&mut s, kinetic_after);
+                self.power = None;
                 // From rest, the mechanism the opening model chose under `a_g(t)` closed again at
                 // the step's start (its depths' cubic never rises: the ground acceleration falls
                 // back inside what the loop resists within the step, e.g. a record grazing `λ g`)
@@ -364,7 +381,7 @@ impl<'a> Runner<'a> {
                 // would never advance (`LoopError::Stalled` after 100 events): the loop rests
                 // through this step, as its flight, shorter than the step, ends in sustained
                 // contact (the lock's argument). Nothing happened: its events are dropped.
-                if let Some((t0, phi0, statuses0, events0, history0)) = &rest_start {
+                if let Some((t0, phi0, statuses0, events0, history0, energy0)) = &rest_start {
                     if s.time == *t0
                         && s.rates.iter().all(|&r| r == 0.0)
                         && s.phi == *phi0
@@ -372,6 +389,7 @@ impl<'a> Runner<'a> {
                     {
                         self.out.events.truncate(*events0);
                         self.out.history.truncate(*history0);
+                        self.out.energy = *energy0;
                         s.time += dt;
                         continue;
                     }
@@ -401,6 +419,9 @@ impl<'a> Runner<'a> {
                 drift
             };
             self.out.max_closure_residual = self.out.max_closure_residual.max(residual);
+            let power_end = self.ground_power_posed(&pose, &s.rates, s.time);
+            self.out.energy.ground_work += 0.5 * dt * (power_start + power_end);
+            self.power = Some(power_end);
             self.out.peak_angle = s
                 .phi
                 .iter()
@@ -419,6 +440,8 @@ impl<'a> Runner<'a> {
                 self.opening(&mut s, ag_now)?;
             }
         }
+        self.out.energy.kinetic_end = self.kinetic(&s) + 0.0;
+        self.out.energy.potential_change = self.potential(&s.phi) - potential_start;
         self.out.state = s;
         Ok(self.out)
     }

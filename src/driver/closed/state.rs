@@ -183,6 +183,8 @@ pub struct LoopOutcome {
     /// answered ([`LoopOptions::screen`]; with [`Screen::Verify`], would have answered).
     pub moving_checks: usize,
     pub screened: usize,
+    /// The energy balance of the run (its residual is the scheme's error).
+    pub energy: super::LoopEnergy,
 }
 
 /// Errors of a loop run.
