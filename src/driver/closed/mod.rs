@@ -70,8 +70,10 @@
 //! zeros on the step's cubic; `equations.rs` the constrained equations and RK4; `projection.rs`
 //! the projections onto the closure; `state.rs` the state, options, events and outcome.
 //!
-//! This driver does not yet go through the column's pipeline (`run.rs` with the
-//! `ChainDynamics` traits of `chain.rs`); see `docs/arches.md`.
+//! `energy.rs` keeps the run's energy balance beside it. This driver has its own loop rather
+//! than the column's pipeline (`run.rs` with the `ChainDynamics` traits of `chain.rs`): no
+//! reaction test, the closure projected after every step, several joints closing at once
+//! (docs/arches.md, "What remains", says why it is kept).
 
 mod closing;
 mod collapse;
