@@ -18,7 +18,7 @@ pub mod colonnade;
 pub mod system;
 #[cfg(test)]
 mod tests;
-mod velocity;
+pub(crate) mod velocity;
 
 use crate::validate::{self, InvalidValue};
 

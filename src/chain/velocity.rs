@@ -57,29 +57,14 @@ impl Chain {
         scratch.clear();
         scratch.resize(2 * (nb + 1), [0.0; 2]);
         let (centre_acc, sums) = scratch.split_at_mut(nb + 1);
-        let mut omega = 0.0_f64;
-        let mut hinge = [0.0_f64, 0.0];
-        let mut hinge_acc = [0.0_f64, 0.0];
-        for j in 0..nb {
-            let use_right = phi[j] != 0.0 || (phi[nj + j] == 0.0 && rates[j] != 0.0);
-            let p = if use_right {
-                pose.right_pivots[j]
-            } else {
-                pose.left_pivots[j]
-            };
-            let acc_p = [
-                hinge_acc[0] - omega * omega * (p[0] - hinge[0]),
-                hinge_acc[1] - omega * omega * (p[1] - hinge[1]),
-            ];
-            omega += rates[j] + rates[nj + j];
-            let c = pose.centres[j];
-            centre_acc[j] = [
-                acc_p[0] - omega * omega * (c[0] - p[0]),
-                acc_p[1] - omega * omega * (c[1] - p[1]),
-            ];
-            hinge = p;
-            hinge_acc = acc_p;
-        }
+        centre_accelerations(
+            phi,
+            rates,
+            [&pose.right_pivots, &pose.left_pivots],
+            &pose.centres,
+            nj,
+            &mut centre_acc[..nb],
+        );
         // Backwards: sums[k] = Σ_{j>=k} m_j a_j, and centre_acc[k], once read, becomes
         // (Σ_{j>=k} m_j c_j × a_j, 0).
         let (mut moment, mut force) = (0.0_f64, [0.0_f64; 2]);
@@ -93,5 +78,47 @@ impl Chain {
             centre_acc[j] = [moment, 0.0];
             sums[j] = force;
         }
+    }
+}
+
+/// The centripetal accelerations of the body centres of an open chain with every DOF
+/// acceleration zero, into `out` (one per body): `a(r on body j) = a(P_j) − ω_j² (r − P_j)`,
+/// where `P_j` is the active pivot of joint `j` (a material point of both bodies it joins; the
+/// right corner `pivots[0][j]` when `phĭ_j` is displaced or alone moving, else the left
+/// `pivots[1][j]`) and `ω_j` the angular velocity of body `j`. `n_joints` is the offset of the
+/// `phî` DOFs in `phi` and `rates` (SPEC §1 order). The column's and the chain's velocity loads
+/// share it.
+pub(crate) fn centre_accelerations(
+    phi: &[f64],
+    rates: &[f64],
+    pivots: [&[[f64; 2]]; 2],
+    centres: &[[f64; 2]],
+    n_joints: usize,
+    out: &mut [[f64; 2]],
+) {
+    let mut omega = 0.0_f64;
+    // Hinge point of the previous joint and its acceleration (ground: at rest).
+    let mut hinge = [0.0_f64, 0.0];
+    let mut hinge_acc = [0.0_f64, 0.0];
+    for (j, acc) in out.iter_mut().enumerate() {
+        let use_right = phi[j] != 0.0 || (phi[n_joints + j] == 0.0 && rates[j] != 0.0);
+        let p = if use_right {
+            pivots[0][j]
+        } else {
+            pivots[1][j]
+        };
+        // Acceleration of the new hinge as a point of the body before it.
+        let acc_p = [
+            hinge_acc[0] - omega * omega * (p[0] - hinge[0]),
+            hinge_acc[1] - omega * omega * (p[1] - hinge[1]),
+        ];
+        omega += rates[j] + rates[n_joints + j];
+        let c = centres[j];
+        *acc = [
+            acc_p[0] - omega * omega * (c[0] - p[0]),
+            acc_p[1] - omega * omega * (c[1] - p[1]),
+        ];
+        hinge = p;
+        hinge_acc = acc_p;
     }
 }

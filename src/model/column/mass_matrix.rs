@@ -91,31 +91,14 @@ impl Column {
         assert_eq!(out.len(), 2 * n);
         // Accelerations of the block centres with zero DOF accelerations.
         let mut centre_acc = vec![[0.0_f64; 2]; n];
-        let mut omega = 0.0_f64;
-        // Hinge point of the previous interface and its acceleration (ground: at rest).
-        let mut hinge = [0.0_f64, 0.0];
-        let mut hinge_acc = [0.0_f64, 0.0];
-        for j in 0..n {
-            let use_right = phi[j] != 0.0 || (phi[n + j] == 0.0 && rates[j] != 0.0);
-            let p = if use_right {
-                pose.right_pivots[j]
-            } else {
-                pose.left_pivots[j]
-            };
-            // Acceleration of the new hinge as a point of the block below.
-            let acc_p = [
-                hinge_acc[0] - omega * omega * (p[0] - hinge[0]),
-                hinge_acc[1] - omega * omega * (p[1] - hinge[1]),
-            ];
-            omega += rates[j] + rates[n + j];
-            let c = pose.centres[j];
-            centre_acc[j] = [
-                acc_p[0] - omega * omega * (c[0] - p[0]),
-                acc_p[1] - omega * omega * (c[1] - p[1]),
-            ];
-            hinge = p;
-            hinge_acc = acc_p;
-        }
+        crate::chain::velocity::centre_accelerations(
+            phi,
+            rates,
+            [&pose.right_pivots, &pose.left_pivots],
+            &pose.centres,
+            n,
+            &mut centre_acc,
+        );
         for (a, o) in out.iter_mut().enumerate() {
             let k = a % n;
             let p = if a < n {
