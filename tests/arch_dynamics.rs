@@ -164,6 +164,15 @@ fn driver_options(duration: f64) -> LoopOptions {
     }
 }
 
+/// The bundled synthetic record (`examples/records/synthetic.AT2`, PGA 0.3 g, 20 s).
+fn bundled_record() -> rocking::ground::records::Record {
+    rocking::ground::records::parse_at2(
+        include_str!("../examples/records/synthetic.AT2"),
+        "synthetic.AT2",
+    )
+    .unwrap()
+}
+
 /// The loop driver from rest under `motion` for `duration` seconds ([`driver_options`]).
 fn from_rest(
     chain: &Chain,

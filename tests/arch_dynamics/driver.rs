@@ -159,13 +159,8 @@ fn driver_settles_closed_after_a_pulse_just_above_lambda() {
 /// through zero and back within a step).
 #[test]
 fn driver_record_rattle_stays_closed_and_few_events() {
-    use rocking::ground::records::parse_at2;
     let lp = Loop::new();
-    let record = parse_at2(
-        include_str!("../../examples/records/synthetic.AT2"),
-        "synthetic.AT2",
-    )
-    .unwrap();
+    let record = bundled_record();
     let motion = FnMotion(|t| record.acceleration(t), record.duration());
     let out = from_rest(&lp.chain, &motion, 5.0).unwrap();
     assert!(

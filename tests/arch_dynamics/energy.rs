@@ -56,13 +56,8 @@ fn lost_at_events(o: &LoopOutcome) -> f64 {
 #[test]
 fn the_energy_balance_closes_on_every_kind_of_run() {
     use rocking::chain::colonnade::CappedColonnade;
-    use rocking::ground::records::parse_at2;
     let lp = Loop::new();
-    let record = parse_at2(
-        include_str!("../../examples/records/synthetic.AT2"),
-        "synthetic.AT2",
-    )
-    .unwrap();
+    let record = bundled_record();
     let record_motion = FnMotion(|t| record.acceleration(t), record.duration());
     let free = FnMotion(|_| 0.0, 1.0);
     let frame = CappedColonnade::frame(1.0, 5.0, 12500.0, 4.0, 0.5, 12500.0)
