@@ -2,7 +2,7 @@
 //! reaction test, SPEC §9), and the interval of ground accelerations the closed loop at rest
 //! resists.
 
-use super::{codes, LoopError, LoopEventKind, LoopState, Runner, Screen};
+use super::{codes, LoopError, LoopEventKind, LoopState, Runner, Screen, Work};
 use crate::model::configuration::Status;
 use crate::model::constrained::opening_model_constrained;
 
@@ -20,12 +20,15 @@ impl Runner<'_> {
         // While moving, the screen proves where the answer is the current configuration.
         self.out.moving_checks += usize::from(moving);
         let screened = moving && self.options.screen != Screen::Off && {
-            let open = s.open_dofs();
-            let x: Vec<f64> = open.iter().map(|&d| s.phi[d]).collect();
-            let v: Vec<f64> = open.iter().map(|&d| s.rates[d]).collect();
+            let Work { open, x, v, .. } = &mut self.work;
+            s.open_dofs_into(open);
+            x.clear();
+            x.extend(open.iter().map(|&d| s.phi[d]));
+            v.clear();
+            v.extend(open.iter().map(|&d| s.rates[d]));
             let holds = self
                 .equations
-                .current_holds(&s.statuses, &open, ag, &x, &v, SCREEN_MARGIN);
+                .current_holds(&s.statuses, open, ag, x, v, SCREEN_MARGIN);
             self.out.screened += usize::from(holds);
             holds
         };
