@@ -126,7 +126,11 @@ impl Runner<'_> {
             .map(|k| (s.rates[k] + s.rates[n + k]).abs())
             .fold(0.0, f64::max);
         let Work {
-            mass, mass_dofs, g, ..
+            mass,
+            mass_dofs,
+            g,
+            impact,
+            ..
         } = &mut self.work;
         self.chain.mass_matrix_with(pose, mass, mass_dofs);
         self.chain.closure_matrix_into(pose, g);
@@ -138,6 +142,7 @@ impl Runner<'_> {
             &mut s.rates,
             &closing,
             &opts.model,
+            impact,
         )?;
         let joints: Vec<usize> = (0..n).filter(|&k| closing[k]).collect();
         let loss = report.kinetic_before - report.kinetic_after;

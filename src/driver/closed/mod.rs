@@ -91,6 +91,7 @@ pub use state::{LoopError, LoopEvent, LoopEventKind, LoopOptions, LoopOutcome, L
 use crate::chain::{Chain, ChainPose, MassDof};
 use crate::ground::GroundMotion;
 use crate::model::configuration::Status;
+use crate::model::constrained::ImpactWork;
 use closing::Located;
 use locate::first_crossing;
 
@@ -196,6 +197,8 @@ struct Work {
     mass: Vec<f64>,
     mass_dofs: Vec<MassDof>,
     g: Vec<f64>,
+    /// The impact model's buffers.
+    impact: ImpactWork,
     /// The open DOFs, their angles, rates and accelerations (screen, slow joints).
     open: Vec<usize>,
     x: Vec<f64>,

@@ -15,7 +15,8 @@
 use crate::error::{ErrorKind, RockingError};
 use crate::model::cone::{ConeProblem, ConeSolution, Generator, ModelOptions, ModelReport};
 use crate::model::configuration::{self, Status};
-use crate::model::constrained::{check_constraints, problem::ConstrainedProblem, solve};
+use crate::model::constrained::problem::{ConstrainedProblem, ConstrainedWork};
+use crate::model::constrained::{check_constraints, solve_in};
 use crate::model::impact::{
     check_mass, check_mass_size, check_positive_definite, kinetic_energy, row_times_moving,
 };
@@ -41,14 +42,30 @@ pub fn impact_model_constrained(
 ) -> Result<ModelReport, RockingError> {
     options.validate()?;
     check_mass(statuses.len(), mass)?;
-    impact_model_constrained_checked(mass, constraints, statuses, velocity, closing, options)
+    let mut work = ImpactWork::default();
+    impact_model_constrained_checked(
+        mass,
+        constraints,
+        statuses,
+        velocity,
+        closing,
+        options,
+        &mut work,
+    )
+}
+
+/// Buffers of the impact model, reused from one impact to the next (the loop driver's): its
+/// constrained problems' and solver's, its configurations and rates.
+#[derive(Default)]
+pub(crate) struct ImpactWork {
+    problem: ConstrainedWork,
 }
 
 /// [`impact_model_constrained`] for a mass matrix symmetric to the bit by construction
 /// ([`crate::chain::Chain::mass_matrix`]: its lower triangle is a copy of the upper): the
 /// symmetry sweep of [`check_mass`], whose verdict is then always a pass, is not taken; the
 /// size and finiteness checks are. The same answers (and errors) as
-/// [`impact_model_constrained`] for such a matrix.
+/// [`impact_model_constrained`] for such a matrix, in the buffers of `work`.
 pub(crate) fn impact_model_constrained_symmetric(
     mass: &[f64],
     constraints: &[f64],
@@ -56,13 +73,22 @@ pub(crate) fn impact_model_constrained_symmetric(
     velocity: &mut [f64],
     closing: &[bool],
     options: &ModelOptions,
+    work: &mut ImpactWork,
 ) -> Result<ModelReport, RockingError> {
     options.validate()?;
     let n = statuses.len();
     check_mass_size(n, mass)?;
     configuration::check_finite("mass", mass)?;
     debug_assert!(check_mass(n, mass).is_ok());
-    impact_model_constrained_checked(mass, constraints, statuses, velocity, closing, options)
+    impact_model_constrained_checked(
+        mass,
+        constraints,
+        statuses,
+        velocity,
+        closing,
+        options,
+        work,
+    )
 }
 
 /// The model once the options and the mass matrix have passed their checks.
@@ -73,6 +99,7 @@ fn impact_model_constrained_checked(
     velocity: &mut [f64],
     closing: &[bool],
     options: &ModelOptions,
+    work: &mut ImpactWork,
 ) -> Result<ModelReport, RockingError> {
     let n = statuses.len();
     let m = 2 * n;
@@ -194,7 +221,8 @@ fn impact_model_constrained_checked(
             let y = problem.dof_vector(&sol.y_hat, m);
             (sol, y, problem.gens)
         } else {
-            let problem = ConstrainedProblem::new(
+            let work = &mut work.problem;
+            let problem = ConstrainedProblem::new_in(
                 gens,
                 mass,
                 m,
@@ -203,10 +231,11 @@ fn impact_model_constrained_checked(
                 nc,
                 &zero_rhs,
                 options.tolerance,
+                work,
             )?;
-            let sol = solve(&problem, options)?;
+            let sol = solve_in(&problem, options, work)?;
             let y = problem.cone.dof_vector(&sol.y_hat, m);
-            (sol, y, problem.cone.gens)
+            (sol, y, work.recycle(problem))
         };
         v = y;
         for j in (0..n).filter(|&j| !closing[j] && !open_before[j]) {

@@ -18,13 +18,13 @@ mod problem;
 mod projection;
 
 pub use impact::impact_model_constrained;
-pub(crate) use impact::impact_model_constrained_symmetric;
+pub(crate) use impact::{impact_model_constrained_symmetric, ImpactWork};
 pub use opening::opening_model_constrained;
 
 use crate::error::{ErrorKind, RockingError};
 use crate::model::cone::{ConeSolution, ModelOptions, Solver};
 use crate::model::configuration;
-use problem::ConstrainedProblem;
+use problem::{ConstrainedProblem, ConstrainedWork};
 
 /// Checks the constraint matrix (row-major `n_c × m`, finite) and returns `n_c`.
 fn check_constraints(constraints: &[f64], m: usize) -> Result<usize, RockingError> {
@@ -48,6 +48,15 @@ fn check_constraints(constraints: &[f64], m: usize) -> Result<usize, RockingErro
 fn solve(
     problem: &ConstrainedProblem,
     options: &ModelOptions,
+) -> Result<ConeSolution, RockingError> {
+    solve_in(problem, options, &mut ConstrainedWork::default())
+}
+
+/// [`solve`] with the projection solver's buffers in `work` (the same solution).
+fn solve_in(
+    problem: &ConstrainedProblem,
+    options: &ModelOptions,
+    work: &mut ConstrainedWork,
 ) -> Result<ConeSolution, RockingError> {
     let n_closed = problem.cone.groups.len();
     let n_choices = n_closed + problem.cone.singles.len().saturating_sub(1);
@@ -78,6 +87,6 @@ fn solve(
             }
             enumeration::solve(problem)
         }
-        _ => projection::solve(problem),
+        _ => projection::solve_in(problem, work),
     }
 }
