@@ -8,7 +8,8 @@
 //!   DOF set) and the null-space solve of one face;
 //! - `enumeration`: the reference (every configuration);
 //! - `projection`: primal active set with constraints, branch and bound;
-//! - `impact`, `opening`: the two models.
+//! - `impact`, `opening`: the two models;
+//! - `work`: the buffers a problem is built and solved in, reused from one to the next.
 
 mod enumeration;
 mod householder;
@@ -16,6 +17,7 @@ mod impact;
 mod opening;
 mod problem;
 mod projection;
+mod work;
 
 pub use impact::impact_model_constrained;
 pub(crate) use impact::{impact_model_constrained_symmetric, ImpactWork};

@@ -20,7 +20,8 @@ use crate::error::{ErrorKind, RockingError};
 use crate::model::cholesky;
 use crate::model::cone::{ConeProblem, Generator};
 use crate::model::constrained::householder::PivotedQr;
-use crate::model::constrained::projection::SolverWork;
+pub(crate) use crate::model::constrained::work::ConstrainedWork;
+use crate::model::constrained::work::{groups_into, singles_into};
 
 /// A diagonal entry of `DᵀMD` below this fraction of the largest is a massless generator.
 const MASSLESS: f64 = 1e-12;
@@ -45,76 +46,7 @@ pub(crate) struct ConstrainedProblem {
     /// The factors of every generator's constraint columns with every row (`reduce_rows`'s,
     /// when it kept all the rows): the definiteness check and the first branch's rows factor
     /// the same matrix (the same bits) and take them from here.
-    all_qr: Option<PivotedQr>,
-}
-
-/// Buffers of the constrained problems and their solves, reused from one problem to the next
-/// (the loop driver's impacts): a problem built and solved in them allocates nothing once they
-/// have grown but its solution.
-#[derive(Default)]
-pub(crate) struct ConstrainedWork {
-    /// The face solves' buffers: the definiteness check's, then the solver's.
-    pub face: FaceWork,
-    /// Factors of the start point's and a branch's rows.
-    pub qr: PivotedQr,
-    /// Scratch: a `Kᵀ` or the scaled constraint columns, a particular solution and its
-    /// right-hand side, index lists (every generator or the free ones, every row).
-    pub kt: Vec<f64>,
-    pub u: Vec<f64>,
-    pub rhs: Vec<f64>,
-    pub all: Vec<usize>,
-    pub rows: Vec<usize>,
-    /// The projection solver's buffers.
-    pub solver: SolverWork,
-    /// The storage of the last problem ([`ConstrainedWork::recycle`]), for the next.
-    spare: Spare,
-}
-
-/// A problem's storage between two problems.
-#[derive(Default)]
-struct Spare {
-    a: Vec<f64>,
-    b: Vec<f64>,
-    scale: Vec<f64>,
-    c: Vec<f64>,
-    r: Vec<f64>,
-    start: Vec<f64>,
-    groups: Vec<[usize; 2]>,
-    singles: Vec<usize>,
-    members: Vec<([usize; 2], usize)>,
-    all_qr: PivotedQr,
-}
-
-impl ConstrainedWork {
-    /// Takes back the storage of a problem built by [`ConstrainedProblem::new_in`] (its
-    /// generators are the caller's: they are returned).
-    pub fn recycle(&mut self, problem: ConstrainedProblem) -> Vec<Generator> {
-        let ConstrainedProblem {
-            cone,
-            c,
-            r,
-            start,
-            all_qr,
-            ..
-        } = problem;
-        let spare = &mut self.spare;
-        (spare.c, spare.r, spare.start) = (c, r, start);
-        if let Some(qr) = all_qr {
-            spare.all_qr = qr;
-        }
-        let ConeProblem {
-            groups,
-            singles,
-            gens,
-            a,
-            b,
-            scale,
-            ..
-        } = cone;
-        (spare.groups, spare.singles, spare.a, spare.b, spare.scale) =
-            (groups, singles, a, b, scale);
-        gens
-    }
+    pub(super) all_qr: Option<PivotedQr>,
 }
 
 /// Buffers of the face solves.
@@ -651,41 +583,4 @@ impl ConstrainedProblem {
         }
         *out = ay;
     }
-}
-
-/// The two corners of each closed interface (generator index pairs), as [`ConeProblem::new`],
-/// into `out`; `members` is scratch.
-fn groups_into(
-    gens: &[Generator],
-    members: &mut Vec<([usize; 2], usize)>,
-    out: &mut Vec<[usize; 2]>,
-) {
-    // Per group: its first two members and how many it has (a group of exactly two is kept),
-    // in one list rather than one list per group.
-    members.clear();
-    for (i, g) in gens.iter().enumerate() {
-        if let Some(k) = g.group {
-            if members.len() <= k {
-                members.resize(k + 1, ([0; 2], 0));
-            }
-            let (first, count) = &mut members[k];
-            if *count < 2 {
-                first[*count] = i;
-            }
-            *count += 1;
-        }
-    }
-    out.clear();
-    out.extend(
-        members
-            .iter()
-            .filter(|&&(_, count)| count == 2)
-            .map(|&(pair, _)| pair),
-    );
-}
-
-/// Bounded generators outside any group, into `out`.
-fn singles_into(gens: &[Generator], out: &mut Vec<usize>) {
-    out.clear();
-    out.extend((0..gens.len()).filter(|&i| gens[i].bounded && gens[i].group.is_none()));
 }

@@ -62,6 +62,13 @@ pub(crate) struct SolverWork {
     best: Vec<f64>,
 }
 
+impl SolverWork {
+    /// Keeps the memory of a point for the next relaxed problems.
+    pub fn keep_point(&mut self, y: Vec<f64>) {
+        self.spare_points.push(y);
+    }
+}
+
 /// Rows of `Ĉ` that stay independent on the allowed generators into `keep`, or `false` if the
 /// right-hand side cannot be met with them (the branch is empty). `qr`, `u`, `kt`, `rhs` and
 /// `rows` are scratch.
