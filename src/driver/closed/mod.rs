@@ -91,7 +91,7 @@ pub use state::{LoopError, LoopEvent, LoopEventKind, LoopOptions, LoopOutcome, L
 use crate::chain::{Chain, ChainPose, MassDof};
 use crate::ground::GroundMotion;
 use crate::model::configuration::Status;
-use crate::model::constrained::ImpactWork;
+use crate::model::constrained::{ConstrainedWork, ImpactWork};
 use closing::Located;
 use locate::first_crossing;
 
@@ -199,6 +199,14 @@ struct Work {
     g: Vec<f64>,
     /// The impact model's buffers.
     impact: ImpactWork,
+    /// The opening model's: a pose, `q + f` (and `f` with its sums), the configuration chosen,
+    /// the accelerations and the constrained problem's buffers.
+    pose: ChainPose,
+    load: Vec<f64>,
+    velocity_load: Vec<f64>,
+    velocity_sums: Vec<[f64; 2]>,
+    chosen: Vec<Status>,
+    opening_model: ConstrainedWork,
     /// The open DOFs, their angles, rates and accelerations (screen, slow joints).
     open: Vec<usize>,
     x: Vec<f64>,

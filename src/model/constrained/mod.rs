@@ -22,11 +22,13 @@ mod work;
 pub use impact::impact_model_constrained;
 pub(crate) use impact::{impact_model_constrained_symmetric, ImpactWork};
 pub use opening::opening_model_constrained;
+pub(crate) use opening::opening_model_constrained_in;
+pub(crate) use problem::ConstrainedWork;
 
 use crate::error::{ErrorKind, RockingError};
 use crate::model::cone::{ConeSolution, ModelOptions, Solver};
 use crate::model::configuration;
-use problem::{ConstrainedProblem, ConstrainedWork};
+use problem::ConstrainedProblem;
 
 /// Checks the constraint matrix (row-major `n_c × m`, finite) and returns `n_c`.
 fn check_constraints(constraints: &[f64], m: usize) -> Result<usize, RockingError> {
@@ -47,14 +49,7 @@ fn check_constraints(constraints: &[f64], m: usize) -> Result<usize, RockingErro
 /// [`Solver::Auto`] enumerate for few closed joints, project above. The enumeration limit counts
 /// the closed joints and every closing joint but the first (`3^closed × 2^closing`
 /// configurations; one closing joint is free, as for a column).
-fn solve(
-    problem: &ConstrainedProblem,
-    options: &ModelOptions,
-) -> Result<ConeSolution, RockingError> {
-    solve_in(problem, options, &mut ConstrainedWork::default())
-}
-
-/// [`solve`] with the projection solver's buffers in `work` (the same solution).
+/// The projection solver's buffers are `work`'s.
 fn solve_in(
     problem: &ConstrainedProblem,
     options: &ModelOptions,

@@ -111,23 +111,10 @@ impl ConstrainedProblem {
     /// is not positive definite on the null space of the constraints, and with
     /// [`ErrorKind::InconsistentState`] when the free generators (the open DOFs, which the model
     /// keeps) cannot satisfy the constraints: the configuration as given does not close.
-    #[allow(clippy::too_many_arguments)]
-    pub fn new(
-        gens: Vec<Generator>,
-        mass: &[f64],
-        m: usize,
-        rhs: &[f64],
-        g: &[f64],
-        nc: usize,
-        g_rhs: &[f64],
-        tolerance: f64,
-    ) -> Result<ConstrainedProblem, RockingError> {
-        let mut work = ConstrainedWork::default();
-        Self::new_in(gens, mass, m, rhs, g, nc, g_rhs, tolerance, &mut work)
-    }
-
-    /// [`ConstrainedProblem::new`] in the memory of `work` (the storage of the problem given
-    /// back by [`ConstrainedWork::recycle`], the buffers of the checks): the same problem.
+    ///
+    /// Built in the memory of `work`: the storage of the last problem given back by
+    /// [`ConstrainedWork::recycle`] and the buffers of the checks (the same problem as in new
+    /// memory).
     #[allow(clippy::too_many_arguments)]
     pub fn new_in(
         gens: Vec<Generator>,
