@@ -53,7 +53,8 @@ impl Runner<'_> {
         // The state at the earliest zero: RK4 again from the start of the step over the
         // located fraction (no interpolation error in the state the impact sees).
         let (xe, ve) = (&mut self.work.xe, &mut self.work.ve);
-        (xe.clear(), ve.clear());
+        xe.clear();
+        ve.clear();
         xe.extend_from_slice(x);
         ve.extend_from_slice(v);
         if first > 0.0

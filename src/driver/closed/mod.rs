@@ -373,7 +373,8 @@ impl<'a> Runner<'a> {
             x.extend(open.iter().map(|&d| s.phi[d]));
             v.clear();
             v.extend(open.iter().map(|&d| s.rates[d]));
-            (x1.clear(), v1.clear());
+            x1.clear();
+            v1.clear();
             x1.resize(open.len(), 0.0);
             v1.resize(open.len(), 0.0);
             let motion = self.motion;

@@ -15,10 +15,7 @@ use crate::chain::{Chain, ChainPose};
 /// every step and at every event allocate nothing once they have grown).
 #[derive(Default)]
 pub(super) struct ProjectionWork {
-    /// The KKT matrix and right-hand side, the open DOFs' joints and pivots.
-    mat: Vec<f64>,
-    rhs: Vec<f64>,
-    piv: Vec<(usize, [f64; 2])>,
+    kkt: KktWork,
     /// The closure matrix (rates) or the residual's Jacobian (positions), `3 × m`.
     rows: Vec<f64>,
     /// The moving DOFs' joints, pivots and rates, and `M_F· v` (rates).
@@ -32,10 +29,18 @@ pub(super) struct ProjectionWork {
     trial_pose: ChainPose,
 }
 
+/// The KKT matrix and right-hand side, the open DOFs' joints and pivots.
+#[derive(Default)]
+struct KktWork {
+    mat: Vec<f64>,
+    rhs: Vec<f64>,
+    piv: Vec<(usize, [f64; 2])>,
+}
+
 /// Solves `[M_FF A_Fᵀ; A_F 0][y; μ] = [b; c]` for `y` (in `b`'s place), `M_FF` the mass
 /// entries of the DOFs `open` in the pose (built in place by [`Chain::mass_block_into`]: the
 /// same formula as [`Chain::mass_matrix`]'s, the same numbers to the bit), `a` the `3 × m`
-/// constraint rows; `mat`, `rhs` and `piv` are scratch. `false` when singular.
+/// constraint rows; `work` is scratch. `false` when singular.
 #[allow(clippy::too_many_arguments)]
 fn kkt(
     chain: &Chain,
@@ -45,8 +50,9 @@ fn kkt(
     open: &[usize],
     b: &mut [f64],
     c: [f64; 3],
-    (mat, rhs, piv): (&mut Vec<f64>, &mut Vec<f64>, &mut Vec<(usize, [f64; 2])>),
+    work: &mut KktWork,
 ) -> bool {
+    let KktWork { mat, rhs, piv } = work;
     let nf = open.len();
     let k = nf + 3;
     mat.clear();
@@ -102,9 +108,7 @@ pub(super) fn project_rates_with(
 ) -> bool {
     let m = chain.n_dofs();
     let ProjectionWork {
-        mat,
-        rhs,
-        piv,
+        kkt: kkt_work,
         rows: g,
         moving,
         b,
@@ -136,7 +140,7 @@ pub(super) fn project_rates_with(
             sum
         }
     }));
-    if !kkt(chain, pose, g, m, open, b, [0.0; 3], (mat, rhs, piv)) {
+    if !kkt(chain, pose, g, m, open, b, [0.0; 3], kkt_work) {
         return false;
     }
     rates.iter_mut().for_each(|r| *r = 0.0);
@@ -183,9 +187,7 @@ pub(super) fn project_positions_posed(
     let size = |r: [f64; 3]| r[1].hypot(r[2]).max(r[0].abs() * reach);
     let depth = |d: usize, x: f64| if d < m / 2 { -x } else { x };
     let ProjectionWork {
-        mat,
-        rhs,
-        piv,
+        kkt: kkt_work,
         rows: jac,
         free,
         dx,
@@ -224,7 +226,7 @@ pub(super) fn project_positions_posed(
                     free,
                     dx,
                     [-r[0], -r[1], -r[2]],
-                    (&mut *mat, &mut *rhs, &mut *piv),
+                    kkt_work,
                 )
             {
                 break false;

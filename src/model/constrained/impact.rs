@@ -314,9 +314,9 @@ fn impact_model_constrained_checked(
             v[n + k] = 0.0;
         }
     }
-    report.kinetic_after = kinetic_energy(mass, &v);
-    configuration::check_result(&v, &[report.kinetic_before, report.kinetic_after])?;
-    statuses.copy_from_slice(&st);
-    velocity.copy_from_slice(&v);
+    report.kinetic_after = kinetic_energy(mass, v);
+    configuration::check_result(v, &[report.kinetic_before, report.kinetic_after])?;
+    statuses.copy_from_slice(st);
+    velocity.copy_from_slice(v);
     Ok(report)
 }

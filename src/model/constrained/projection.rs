@@ -133,7 +133,7 @@ fn complete_rank(
     // Orthonormal basis of the span of the set's columns (modified Gram–Schmidt), `c` entries
     // per vector.
     basis.clear();
-    let size = |basis: &Vec<f64>| if c == 0 { 0 } else { basis.len() / c };
+    let size = |basis: &Vec<f64>| basis.len().checked_div(c).unwrap_or(0);
     for &j in set.iter() {
         if size(basis) == c {
             break;
@@ -234,7 +234,7 @@ fn relaxed(
             )));
         }
         info = problem
-            .solve_face(&set, &rows, ws)?
+            .solve_face(set, rows, ws)?
             .ok_or_else(|| not_converged("the working set lost feasibility (round-off)"))?;
         if info.rank < rows.len() {
             return Err(not_converged(
