@@ -199,15 +199,16 @@ struct Work {
     g: Vec<f64>,
     /// The impact model's buffers.
     impact: ImpactWork,
-    /// The opening model's: a pose, `q + f` (and `f` with its sums), the configuration chosen,
-    /// the accelerations and the constrained problem's buffers.
+    /// The opening model's: a pose, `q + f` (and `f` with its sums), the configuration chosen
+    /// and the constrained problem's buffers (its accelerations in `acc`).
     pose: ChainPose,
     load: Vec<f64>,
     velocity_load: Vec<f64>,
     velocity_sums: Vec<[f64; 2]>,
     chosen: Vec<Status>,
     opening_model: ConstrainedWork,
-    /// The open DOFs, their angles, rates and accelerations (screen, slow joints).
+    /// The open DOFs, their angles, rates and accelerations (screen, slow joints; `acc` also
+    /// the opening model's accelerations).
     open: Vec<usize>,
     x: Vec<f64>,
     v: Vec<f64>,
