@@ -8,18 +8,22 @@ impl Chain {
     /// is the planar twist `(1, P_y, −P_x)` of a unit rotation about its pivot (rotation rate;
     /// velocity of the material point at the origin). Around a loop `G v = 0`.
     pub fn closure_matrix(&self, pose: &ChainPose) -> Vec<f64> {
+        let mut g = Vec::new();
+        self.closure_matrix_into(pose, &mut g);
+        g
+    }
+
+    /// [`Chain::closure_matrix`] into `out` (cleared first), reusing its memory.
+    pub fn closure_matrix_into(&self, pose: &ChainPose, out: &mut Vec<f64>) {
+        out.clear();
         if !self.is_loop() {
-            return Vec::new();
+            return;
         }
         let m = self.n_dofs();
-        let mut g = vec![0.0; 3 * m];
-        for a in 0..m {
-            let p = self.pivot(pose, a);
-            g[a] = 1.0;
-            g[m + a] = p[1];
-            g[2 * m + a] = -p[0];
-        }
-        g
+        out.reserve(3 * m);
+        out.extend((0..m).map(|_| 1.0));
+        out.extend((0..m).map(|a| self.pivot(pose, a)[1]));
+        out.extend((0..m).map(|a| -self.pivot(pose, a)[0]));
     }
 
     /// `Ġ v` (length 3; empty for an open chain) for the DOF rates `rates`: the pivots move with

@@ -160,7 +160,7 @@ fn cross(a: [f64; 2], b: [f64; 2]) -> f64 {
 /// `s0 · dot(c_k − P_row, c_k − P_col) + I_k` with the same operations as
 /// [`Chain::mass_entry_of`]'s.
 #[derive(Clone, Copy)]
-struct MassDof {
+pub(crate) struct MassDof {
     k: usize,
     p: [f64; 2],
     s0: f64,
@@ -451,16 +451,29 @@ impl Chain {
     /// `M[a][b] = Σ_{j after both joints} ( m_j (c_j − P_a)·(c_j − P_b) + I_j )`. In a loop the
     /// last joint's rows and columns are zero (it moves no mass).
     pub fn mass_matrix(&self, pose: &ChainPose) -> Vec<f64> {
+        let mut out = Vec::new();
+        self.mass_matrix_with(pose, &mut out, &mut Vec::new());
+        out
+    }
+
+    /// [`Chain::mass_matrix`] into `out` (cleared first), with `dofs` as scratch: both reuse
+    /// their memory (the loop driver's impacts).
+    pub(crate) fn mass_matrix_with(
+        &self,
+        pose: &ChainPose,
+        out: &mut Vec<f64>,
+        dofs: &mut Vec<MassDof>,
+    ) {
         let (nj, m) = (self.n_joints(), self.n_dofs());
         let nb = self.n_bodies();
         // Each DOF's joint (clamped to the bodies: `max(j_a, j_b).min(N)` is the larger of the
         // clamped joints) and pivot once (the entries' arithmetic as before).
-        let dofs: Vec<MassDof> = (0..m)
-            .map(|a| MassDof::new(pose, (a % nj).min(nb), self.pivot(pose, a)))
-            .collect();
+        dofs.clear();
+        dofs.extend((0..m).map(|a| MassDof::new(pose, (a % nj).min(nb), self.pivot(pose, a))));
         // Row by row without a zero fill (a zeroed allocation of this size costs more than the
         // rows): the entries left of the diagonal copied from the rows above.
-        let mut out = Vec::with_capacity(m * m);
+        out.clear();
+        out.reserve(m * m);
         for (a, row) in dofs.iter().enumerate() {
             for b in 0..a {
                 let v = out[b * m + a];
@@ -468,7 +481,6 @@ impl Chain {
             }
             out.extend(dofs[a..].iter().map(|col| row.entry(col)));
         }
-        out
     }
 
     /// Load vector `q` (length `2J`) for a horizontal ground acceleration `ground_acc` and gravity

@@ -354,7 +354,15 @@ impl ConeProblem {
 
     /// Unscaled DOF vector `D y` (length `m`) from scaled coefficients `ŷ` (length `p`).
     pub fn dof_vector(&self, y_hat: &[f64], m: usize) -> Vec<f64> {
-        let mut v = vec![0.0; m];
+        let mut v = Vec::new();
+        self.dof_vector_into(y_hat, m, &mut v);
+        v
+    }
+
+    /// [`ConeProblem::dof_vector`] into `v` (cleared first), reusing its memory.
+    pub fn dof_vector_into(&self, y_hat: &[f64], m: usize, v: &mut Vec<f64>) {
+        v.clear();
+        v.resize(m, 0.0);
         for (i, g) in self.gens.iter().enumerate() {
             let yi = y_hat[i] * self.scale[i];
             if yi != 0.0 {
@@ -363,7 +371,6 @@ impl ConeProblem {
                 }
             }
         }
-        v
     }
 }
 

@@ -3,7 +3,8 @@
 //! step resolves (docs/arches.md 2b).
 
 use super::{
-    project_positions_posed, project_rates, side, LoopError, LoopEventKind, LoopState, Runner,
+    project_positions_posed, project_rates_with, side, LoopError, LoopEventKind, LoopState, Runner,
+    Work,
 };
 use crate::chain::ChainPose;
 use crate::model::configuration::Status;
@@ -30,8 +31,14 @@ pub(super) struct Located<'s> {
 
 impl Runner<'_> {
     /// Carries `s` to the earliest located zero of the step, flags the joints closing there and
-    /// applies the impact model (or the lock); returns the kinetic energy after.
-    pub(super) fn close(&mut self, s: &mut LoopState, step: &Located) -> Result<f64, LoopError> {
+    /// applies the impact model (or the lock); returns the kinetic energy after. `pose` is
+    /// scratch (left the pose of the state at the impact).
+    pub(super) fn close(
+        &mut self,
+        s: &mut LoopState,
+        step: &Located,
+        pose: &mut ChainPose,
+    ) -> Result<f64, LoopError> {
         let opts = self.options;
         let n = self.chain.n_joints();
         let Located {
@@ -48,11 +55,15 @@ impl Runner<'_> {
         let depth = |d: usize, xi: f64| side(d, n) * xi;
         // The state at the earliest zero: RK4 again from the start of the step over the
         // located fraction (no interpolation error in the state the impact sees).
-        let (mut xe, mut ve) = (x.to_vec(), v.to_vec());
+        let (xe, ve) = (&mut self.work.xe, &mut self.work.ve);
+        xe.clear();
+        ve.clear();
+        xe.extend_from_slice(x);
+        ve.extend_from_slice(v);
         if first > 0.0
             && !self
                 .equations
-                .rk4_step(open, &ag, s.time, first * dt, x, v, &mut xe, &mut ve)
+                .rk4_step(open, &ag, s.time, first * dt, x, v, xe, ve)
         {
             return Err(LoopError::Singular(s.time));
         }
@@ -66,7 +77,10 @@ impl Runner<'_> {
         // located zeros differ by the interpolant's error only), and any DOF the
         // integration to the instant left at or through zero.
         let tolerance = SIMULTANEOUS * opts.dt;
-        let mut closing = vec![false; n];
+        // The work's buffers taken for the event (given back at its end).
+        let mut closing = std::mem::take(&mut self.work.closing);
+        closing.clear();
+        closing.resize(n, false);
         for i in 0..open.len() {
             let d = open[i];
             let located = crossings
@@ -86,12 +100,15 @@ impl Runner<'_> {
         // located zeros' error: back onto it with the rest.
         // One pose of the angles at the impact serves the projection (which leaves the pose of
         // its result), the kinetic energies, the model's matrices and the slow joints' rates.
-        let mut pose = self.chain.pose(&s.phi);
+        self.chain.pose_into(&s.phi, pose);
         let residual = if opts.project {
-            let rest: Vec<usize> = open.iter().copied().filter(|&d| !closing[d % n]).collect();
-            project_positions_posed(self.chain, &rest, &mut s.phi, self.reach, 3, &mut pose)
+            let rest = &mut self.work.rest;
+            rest.clear();
+            rest.extend(open.iter().copied().filter(|&d| !closing[d % n]));
+            let work = &mut self.work.projection;
+            project_positions_posed(self.chain, rest, &mut s.phi, self.reach, 3, pose, work)
         } else {
-            self.residual_posed(&pose)
+            self.residual_posed(pose)
         };
         self.out.max_closure_residual = self.out.max_closure_residual.max(residual);
         if s.time == self.last_event_time {
@@ -103,44 +120,58 @@ impl Runner<'_> {
             (self.last_event_time, self.stalled) = (s.time, 0);
         }
         // The ground's work up to the closing, on the located part of the step.
-        let power_event = self.ground_power_posed(&pose, &s.rates, s.time);
+        let power_event = self.ground_power_posed(pose, &s.rates, s.time);
         self.out.energy.ground_work += 0.5 * first * dt * (power_start + power_event);
-        let before = self.kinetic_posed(&pose, &s.rates);
+        let before = self.kinetic_posed(pose, &s.rates);
         self.max_kinetic = self.max_kinetic.max(before);
-        let (statuses_before, rates_before) = (s.statuses.clone(), s.rates.clone());
+        let mut statuses_before = std::mem::take(&mut self.work.statuses_before);
+        let mut rates_before = std::mem::take(&mut self.work.rates_before);
+        statuses_before.clone_from(&s.statuses);
+        rates_before.clone_from(&s.rates);
         let closing_rate = (0..n)
             .filter(|&k| closing[k])
             .map(|k| (s.rates[k] + s.rates[n + k]).abs())
             .fold(0.0, f64::max);
-        let mass = self.chain.mass_matrix(&pose);
-        let g = self.chain.closure_matrix(&pose);
+        let Work {
+            mass,
+            mass_dofs,
+            g,
+            impact,
+            ..
+        } = &mut self.work;
+        self.chain.mass_matrix_with(pose, mass, mass_dofs);
+        self.chain.closure_matrix_into(pose, g);
         // The chain's mass matrix is symmetric to the bit (its lower triangle copied).
         let report = impact_model_constrained_symmetric(
-            &mass,
-            &g,
+            mass,
+            g,
             &mut s.statuses,
             &mut s.rates,
             &closing,
             &opts.model,
+            impact,
         )?;
         let joints: Vec<usize> = (0..n).filter(|&k| closing[k]).collect();
         let loss = report.kinetic_before - report.kinetic_after;
         let mut kinetic_after = report.kinetic_after;
         if loss <= opts.lock_loss * report.kinetic_before && closing_rate <= self.lock_rate {
             // A chatter: lock the closing joints instead.
-            s.statuses = statuses_before;
-            s.rates = rates_before;
+            s.statuses.copy_from_slice(&statuses_before);
+            s.rates.copy_from_slice(&rates_before);
             for &k in &joints {
                 s.statuses[k] = Status::Closed;
             }
-            let open = s.open_dofs();
+            let Work {
+                open, projection, ..
+            } = &mut self.work;
+            s.open_dofs_into(open);
             // Fewer than four open joints: at rest (SPEC §9), settled below.
             if open.len() < 4 {
                 s.rates.iter_mut().for_each(|r| *r = 0.0);
-            } else if !project_rates(self.chain, &pose, &open, &mut s.rates) {
+            } else if !project_rates_with(self.chain, pose, open, &mut s.rates, projection) {
                 return Err(LoopError::Singular(s.time));
             }
-            kinetic_after = self.kinetic_posed(&pose, &s.rates);
+            kinetic_after = self.kinetic_posed(pose, &s.rates);
             self.event(
                 s,
                 LoopEventKind::Locked {
@@ -150,8 +181,8 @@ impl Runner<'_> {
                 },
             );
         } else {
-            if self.keep_slow_closed(s, &pose)? {
-                kinetic_after = self.kinetic_posed(&pose, &s.rates);
+            if self.keep_slow_closed(s, pose)? {
+                kinetic_after = self.kinetic_posed(pose, &s.rates);
             }
             self.event(
                 s,
@@ -163,6 +194,9 @@ impl Runner<'_> {
             );
         }
         self.out.energy.dissipated += report.kinetic_before - kinetic_after;
+        self.work.closing = closing;
+        self.work.statuses_before = statuses_before;
+        self.work.rates_before = rates_before;
         Ok(kinetic_after)
     }
 
@@ -183,40 +217,53 @@ impl Runner<'_> {
         let n = self.chain.n_joints();
         let mut changed = false;
         let flight = self.options.min_flight;
+        let Work {
+            open,
+            x,
+            v,
+            acc,
+            slow,
+            projection,
+            ..
+        } = &mut self.work;
         loop {
-            let open = s.open_dofs();
-            let mut acc = vec![0.0; open.len()];
+            s.open_dofs_into(open);
+            acc.clear();
+            acc.resize(open.len(), 0.0);
             if flight > 0.0 {
-                let x: Vec<f64> = open.iter().map(|&d| s.phi[d]).collect();
-                let v: Vec<f64> = open.iter().map(|&d| s.rates[d]).collect();
+                x.clear();
+                x.extend(open.iter().map(|&d| s.phi[d]));
+                v.clear();
+                v.extend(open.iter().map(|&d| s.rates[d]));
                 let ag = self.motion.acceleration(s.time);
-                if !self.equations.accelerations(&open, ag, &x, &v, &mut acc) {
+                if !self.equations.accelerations(open, ag, x, v, acc) {
                     return Err(LoopError::Singular(s.time));
                 }
             }
-            let slow: Vec<usize> = open
-                .iter()
-                .zip(&acc)
-                .filter(|&(&d, &a)| {
-                    let (r, a) = (side(d, n) * s.rates[d], side(d, n) * a);
-                    let short = a < 0.0 && 2.0 * r <= -a * flight * self.options.dt;
-                    s.phi[d] == 0.0 && (r <= self.lock_rate || short)
-                })
-                .map(|(&d, _)| d % n)
-                .collect();
+            slow.clear();
+            slow.extend(
+                open.iter()
+                    .zip(acc.iter())
+                    .filter(|&(&d, &a)| {
+                        let (r, a) = (side(d, n) * s.rates[d], side(d, n) * a);
+                        let short = a < 0.0 && 2.0 * r <= -a * flight * self.options.dt;
+                        s.phi[d] == 0.0 && (r <= self.lock_rate || short)
+                    })
+                    .map(|(&d, _)| d % n),
+            );
             if slow.is_empty() {
                 return Ok(changed);
             }
             changed = true;
-            for &k in &slow {
+            for &k in slow.iter() {
                 s.statuses[k] = Status::Closed;
             }
-            let open = s.open_dofs();
+            s.open_dofs_into(open);
             if open.len() < 4 {
                 s.rates.iter_mut().for_each(|r| *r = 0.0);
                 return Ok(true);
             }
-            if !project_rates(self.chain, pose, &open, &mut s.rates) {
+            if !project_rates_with(self.chain, pose, open, &mut s.rates, projection) {
                 return Err(LoopError::Singular(s.time));
             }
         }

@@ -81,8 +81,13 @@ impl Runner<'_> {
         if open.len() != 4 || potential <= self.closed_potential + slack {
             return false;
         }
-        let gravity = self.chain.load_vector(pose, 0.0, self.options.gravity);
-        let power: f64 = open.iter().map(|&d| gravity[d] * s.rates[d]).sum();
+        // Gravity's load on the open DOFs (`Chain::load_entry`, the entries of
+        // `Chain::load_vector`: the same arithmetic).
+        let g = self.options.gravity;
+        let power: f64 = open
+            .iter()
+            .map(|&d| self.chain.load_entry(pose, d, 0.0, g) * s.rates[d])
+            .sum();
         let opening: f64 = open.iter().map(|&d| side(d, n) * s.rates[d]).sum();
         power > 0.0 && opening > 0.0
     }

@@ -49,11 +49,13 @@ impl Runner<'_> {
             .sum()
     }
 
-    /// [`Runner::ground_power_posed`] of a state (zero at rest, without a pose).
-    pub(super) fn ground_power(&self, s: &LoopState) -> f64 {
+    /// [`Runner::ground_power_posed`] of a state (zero at rest, without a pose), posing its
+    /// angles in `pose` (scratch).
+    pub(super) fn ground_power(&self, s: &LoopState, pose: &mut ChainPose) -> f64 {
         if s.rates.iter().all(|&r| r == 0.0) {
             return 0.0;
         }
-        self.ground_power_posed(&self.chain.pose(&s.phi), &s.rates, s.time)
+        self.chain.pose_into(&s.phi, pose);
+        self.ground_power_posed(pose, &s.rates, s.time)
     }
 }

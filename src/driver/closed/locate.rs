@@ -17,20 +17,36 @@ pub(super) fn first_crossing(h: f64, g0: f64, g1: f64, r0: f64, r1: f64) -> Opti
     let a = 6.0 * g0 + 3.0 * h * r0 - 6.0 * g1 + 3.0 * h * r1;
     let b = -6.0 * g0 - 4.0 * h * r0 + 6.0 * g1 - 2.0 * h * r1;
     let c = h * r0;
-    let mut points = Vec::with_capacity(4);
-    if a.abs() > 1e-300 {
+    // At most two turning points and the step's end, in a fixed array.
+    let mut roots = [0.0; 2];
+    let n_roots = if a.abs() > 1e-300 {
         let disc = b * b - 4.0 * a * c;
         if disc >= 0.0 {
             let r = disc.sqrt();
-            points.push((-b - r) / (2.0 * a));
-            points.push((-b + r) / (2.0 * a));
+            roots = [(-b - r) / (2.0 * a), (-b + r) / (2.0 * a)];
+            2
+        } else {
+            0
         }
     } else if b.abs() > 1e-300 {
-        points.push(-c / b);
+        roots[0] = -c / b;
+        1
+    } else {
+        0
+    };
+    let mut points = [0.0; 3];
+    let mut len = 0;
+    for &s in &roots[..n_roots] {
+        if s > 0.0 && s < 1.0 {
+            points[len] = s;
+            len += 1;
+        }
     }
-    points.retain(|&s| s > 0.0 && s < 1.0);
-    points.sort_by(f64::total_cmp);
-    points.push(1.0);
+    if len == 2 && points[1].total_cmp(&points[0]).is_lt() {
+        points.swap(0, 1);
+    }
+    points[len] = 1.0;
+    let points = &points[..=len];
     let (mut lo, mut glo) = (0.0, g0);
     let mut rest = points.iter().copied();
     if g0 <= 0.0 {

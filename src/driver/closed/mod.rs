@@ -88,13 +88,14 @@ mod tests;
 
 pub use energy::LoopEnergy;
 pub use equations::LoopEquations;
-use projection::project_positions_posed;
 pub use projection::{project_positions, project_rates};
+use projection::{project_positions_posed, project_rates_with, ProjectionWork};
 pub use state::{LoopError, LoopEvent, LoopEventKind, LoopOptions, LoopOutcome, LoopState, Screen};
 
-use crate::chain::{Chain, ChainPose};
+use crate::chain::{Chain, ChainPose, MassDof};
 use crate::ground::GroundMotion;
 use crate::model::configuration::Status;
+use crate::model::constrained::{ConstrainedWork, ImpactWork};
 use closing::Located;
 use locate::first_crossing;
 
@@ -180,6 +181,46 @@ struct Runner<'a> {
     /// step; `None` after an event changed the rates).
     power: Option<f64>,
     out: LoopOutcome,
+    /// Buffers reused from step to step and event to event.
+    work: Work,
+}
+
+/// The run's buffers: each grows to its largest size once and is then reused (cleared and
+/// refilled), so that a step or an event allocates nothing.
+#[derive(Default)]
+struct Work {
+    /// The projections' KKT systems, Jacobians and trial poses.
+    projection: ProjectionWork,
+    /// The moving DOFs and their joints and pivots (kinetic energy).
+    moving: Vec<(usize, (usize, [f64; 2]))>,
+    /// A closing's located state, flags, projected DOFs, joints and rates before the impact.
+    xe: Vec<f64>,
+    ve: Vec<f64>,
+    closing: Vec<bool>,
+    rest: Vec<usize>,
+    statuses_before: Vec<Status>,
+    rates_before: Vec<f64>,
+    /// The mass matrix at an impact (and its DOFs' shares) and the closure matrix.
+    mass: Vec<f64>,
+    mass_dofs: Vec<MassDof>,
+    g: Vec<f64>,
+    /// The impact model's buffers.
+    impact: ImpactWork,
+    /// The opening model's: a pose, `q + f` (and `f` with its sums), the configuration chosen
+    /// and the constrained problem's buffers (its accelerations in `acc`).
+    pose: ChainPose,
+    load: Vec<f64>,
+    velocity_load: Vec<f64>,
+    velocity_sums: Vec<[f64; 2]>,
+    chosen: Vec<Status>,
+    opening_model: ConstrainedWork,
+    /// The open DOFs, their angles, rates and accelerations (screen, slow joints; `acc` also
+    /// the opening model's accelerations).
+    open: Vec<usize>,
+    x: Vec<f64>,
+    v: Vec<f64>,
+    acc: Vec<f64>,
+    slow: Vec<usize>,
 }
 
 impl<'a> Runner<'a> {
@@ -220,6 +261,7 @@ impl<'a> Runner<'a> {
                 screened: 0,
                 energy: LoopEnergy::default(),
             },
+            work: Work::default(),
         }
     }
 
@@ -227,29 +269,30 @@ impl<'a> Runner<'a> {
         self.motion.acceleration(t)
     }
 
-    fn kinetic(&self, s: &LoopState) -> f64 {
+    fn kinetic(&mut self, s: &LoopState) -> f64 {
         self.kinetic_posed(&self.chain.pose(&s.phi), &s.rates)
     }
 
     /// [`Runner::kinetic`] with the pose of the state's angles already built.
-    fn kinetic_posed(&self, pose: &ChainPose, rates: &[f64]) -> f64 {
-        let s_rates = rates;
-        let m = self.chain.n_dofs();
-        // Over the moving DOFs only (the others' zero rates add nothing to the sums).
-        let moving: Vec<usize> = (0..m).filter(|&a| s_rates[a] != 0.0).collect();
-        let piv: Vec<(usize, [f64; 2])> = moving
-            .iter()
-            .map(|&a| self.chain.dof_pivot(pose, a))
-            .collect();
+    fn kinetic_posed(&mut self, pose: &ChainPose, rates: &[f64]) -> f64 {
+        let chain = self.chain;
+        let m = chain.n_dofs();
+        // Over the moving DOFs only (the others' zero rates add nothing to the sums), each
+        // with its joint and pivot.
+        let moving = &mut self.work.moving;
+        moving.clear();
+        moving.extend(
+            (0..m)
+                .filter(|&a| rates[a] != 0.0)
+                .map(|a| (a, chain.dof_pivot(pose, a))),
+        );
         0.5 * moving
             .iter()
-            .zip(&piv)
-            .map(|(&a, &pa)| {
-                s_rates[a]
+            .map(|&(a, pa)| {
+                rates[a]
                     * moving
                         .iter()
-                        .zip(&piv)
-                        .map(|(&b, &pb)| self.chain.mass_entry_of(pose, pa, pb) * s_rates[b])
+                        .map(|&(b, pb)| chain.mass_entry_of(pose, pa, pb) * rates[b])
                         .sum::<f64>()
             })
             .sum::<f64>()
@@ -282,6 +325,13 @@ impl<'a> Runner<'a> {
         self.max_kinetic = self.kinetic(&s);
         self.out.energy.kinetic_start = self.max_kinetic + 0.0; // `+ 0.0`: no negative zero
         let potential_start = self.potential(&s.phi);
+        // The step's buffers (open DOFs, angles and rates at both ends, located zeros, the pose
+        // at its end), reused from step to step.
+        let (mut open, mut crossings) = (Vec::new(), Vec::new());
+        let (mut x, mut v, mut x1, mut v1) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+        let mut pose = ChainPose::default();
+        // At rest, the angles and statuses the step starts from (below).
+        let (mut phi0, mut statuses0) = (Vec::new(), Vec::new());
         if opts.record_every > 0 {
             self.out.history.push((s.time, s.phi.clone()));
         }
@@ -317,10 +367,10 @@ impl<'a> Runner<'a> {
             // At rest, the state the step starts from (angles, statuses, events and history
             // recorded so far), to recognise a step the loop rests through (below).
             let rest_start = at_rest.then(|| {
+                phi0.clone_from(&s.phi);
+                statuses0.clone_from(&s.statuses);
                 (
                     s.time,
-                    s.phi.clone(),
-                    s.statuses.clone(),
                     self.out.events.len(),
                     self.out.history.len(),
                     self.out.energy,
@@ -338,12 +388,17 @@ impl<'a> Runner<'a> {
             // The ground's power at the step's start (zero from rest).
             let power_start = match self.power {
                 Some(p) => p,
-                None => self.ground_power(&s),
+                None => self.ground_power(&s, &mut pose),
             };
-            let open = s.open_dofs();
-            let x: Vec<f64> = open.iter().map(|&d| s.phi[d]).collect();
-            let v: Vec<f64> = open.iter().map(|&d| s.rates[d]).collect();
-            let (mut x1, mut v1) = (vec![0.0; open.len()], vec![0.0; open.len()]);
+            s.open_dofs_into(&mut open);
+            x.clear();
+            x.extend(open.iter().map(|&d| s.phi[d]));
+            v.clear();
+            v.extend(open.iter().map(|&d| s.rates[d]));
+            x1.clear();
+            v1.clear();
+            x1.resize(open.len(), 0.0);
+            v1.resize(open.len(), 0.0);
             let motion = self.motion;
             let ag = |t: f64| motion.acceleration(t);
             let depth = |d: usize, xi: f64| side(d, n) * xi;
@@ -356,13 +411,12 @@ impl<'a> Runner<'a> {
             // Closing: the first zero of each open DOF's depth on the step's cubic Hermite
             // interpolant (ending through zero, dipping through zero and back, or opened at this
             // instant and back within the step).
-            let crossings: Vec<(usize, f64)> = (0..open.len())
-                .filter_map(|i| {
-                    let d = open[i];
-                    let (g0, g1) = (depth(d, x[i]).max(0.0), depth(d, x1[i]));
-                    first_crossing(dt, g0, g1, depth(d, v[i]), depth(d, v1[i])).map(|s| (i, s))
-                })
-                .collect();
+            crossings.clear();
+            crossings.extend((0..open.len()).filter_map(|i| {
+                let d = open[i];
+                let (g0, g1) = (depth(d, x[i]).max(0.0), depth(d, x1[i]));
+                first_crossing(dt, g0, g1, depth(d, v[i]), depth(d, v1[i])).map(|s| (i, s))
+            }));
             if let Some(first) = crossings.iter().map(|c| c.1).reduce(f64::min) {
                 let step = Located {
                     open: &open,
@@ -373,7 +427,7 @@ impl<'a> Runner<'a> {
                     dt,
                     power_start,
                 };
-                let kinetic_after = self.close(&mut s, &step)?;
+                let kinetic_after = self.close(&mut s, &step, &mut pose)?;
                 self.settle(&mut s, kinetic_after);
                 self.power = None;
                 // From rest, the mechanism the opening model chose under `a_g(t)` closed again at
@@ -383,11 +437,11 @@ impl<'a> Runner<'a> {
                 // would never advance (`LoopError::Stalled` after 100 events): the loop rests
                 // through this step, as its flight, shorter than the step, ends in sustained
                 // contact (the lock's argument). Nothing happened: its events are dropped.
-                if let Some((t0, phi0, statuses0, events0, history0, energy0)) = &rest_start {
+                if let Some((t0, events0, history0, energy0)) = &rest_start {
                     if s.time == *t0
                         && s.rates.iter().all(|&r| r == 0.0)
-                        && s.phi == *phi0
-                        && s.statuses == *statuses0
+                        && s.phi == phi0
+                        && s.statuses == statuses0
                     {
                         self.out.events.truncate(*events0);
                         self.out.history.truncate(*history0);
@@ -406,14 +460,15 @@ impl<'a> Runner<'a> {
             steps += 1;
             // One pose of the angles serves the drift, the projection (which leaves the pose
             // of its result), the kinetic energy and the collapse test.
-            let mut pose = self.chain.pose(&s.phi);
+            self.chain.pose_into(&s.phi, &mut pose);
             let drift = self.residual_posed(&pose);
             self.out.max_step_drift = self.out.max_step_drift.max(drift);
             let residual = if opts.project {
+                let work = &mut self.work.projection;
                 let r = project_positions_posed(
-                    self.chain, &open, &mut s.phi, self.reach, 3, &mut pose,
+                    self.chain, &open, &mut s.phi, self.reach, 3, &mut pose, work,
                 );
-                if !project_rates(self.chain, &pose, &open, &mut s.rates) {
+                if !project_rates_with(self.chain, &pose, &open, &mut s.rates, work) {
                     return Err(LoopError::Singular(s.time));
                 }
                 r

@@ -2,9 +2,9 @@
 //! reaction test, SPEC §9), and the interval of ground accelerations the closed loop at rest
 //! resists.
 
-use super::{codes, LoopError, LoopEventKind, LoopState, Runner, Screen};
+use super::{codes, LoopError, LoopEventKind, LoopState, Runner, Screen, Work};
 use crate::model::configuration::Status;
-use crate::model::constrained::opening_model_constrained;
+use crate::model::constrained::opening_model_constrained_in;
 
 /// The screen's margin: every closed DOF's multiplier must exceed this share of the largest
 /// generalised force in its optimality condition (`|(M a)_d|`, `|q_d + f_d|`, `|(Gᵀμ)_d|`), far
@@ -20,65 +20,87 @@ impl Runner<'_> {
         // While moving, the screen proves where the answer is the current configuration.
         self.out.moving_checks += usize::from(moving);
         let screened = moving && self.options.screen != Screen::Off && {
-            let open = s.open_dofs();
-            let x: Vec<f64> = open.iter().map(|&d| s.phi[d]).collect();
-            let v: Vec<f64> = open.iter().map(|&d| s.rates[d]).collect();
+            let Work { open, x, v, .. } = &mut self.work;
+            s.open_dofs_into(open);
+            x.clear();
+            x.extend(open.iter().map(|&d| s.phi[d]));
+            v.clear();
+            v.extend(open.iter().map(|&d| s.rates[d]));
             let holds = self
                 .equations
-                .current_holds(&s.statuses, &open, ag, &x, &v, SCREEN_MARGIN);
+                .current_holds(&s.statuses, open, ag, x, v, SCREEN_MARGIN);
             self.out.screened += usize::from(holds);
             holds
         };
         if screened && self.options.screen == Screen::On {
             return Ok(false);
         }
-        let (statuses, moves) = match self.choice(s, ag) {
-            Ok(c) => c,
+        let moves = match self.choice(s, ag) {
+            Ok(moves) => moves,
             Err(e) if screened => panic!("loop screen (verify) at t = {}: {e}", s.time),
             Err(e) => return Err(e),
         };
-        if screened && statuses != s.statuses {
+        let statuses = &self.work.chosen;
+        if screened && *statuses != s.statuses {
             panic!(
                 "loop screen (verify) at t = {}: the screen kept {:?}, the opening model chose {:?}",
                 s.time,
                 codes(&s.statuses),
-                codes(&statuses)
+                codes(statuses)
             );
         }
         // From rest: adopt what the model chose when it moves something; while moving: adopt a
         // different configuration.
-        if (!moving && moves) || (moving && statuses != s.statuses) {
-            s.statuses = statuses;
+        if (!moving && moves) || (moving && *statuses != s.statuses) {
+            s.statuses.copy_from_slice(statuses);
             self.event(s, LoopEventKind::Opening);
             return Ok(true);
         }
         Ok(false)
     }
 
-    /// The opening model's configuration at `s` under `ag`, and whether it moves anything.
-    pub(super) fn choice(&self, s: &LoopState, ag: f64) -> Result<(Vec<Status>, bool), LoopError> {
-        let pose = self.chain.pose(&s.phi);
-        let mass = self.chain.mass_matrix(&pose);
-        let q = self.chain.load_vector(&pose, ag, self.options.gravity);
-        let f = self.chain.velocity_load(&pose, &s.phi, &s.rates);
-        let load: Vec<f64> = q.iter().zip(&f).map(|(a, b)| a + b).collect();
-        let g = self.chain.closure_matrix(&pose);
-        let rhs: Vec<f64> = self
-            .chain
-            .closure_rate(&pose, &s.rates)
-            .iter()
-            .map(|x| -x)
-            .collect();
-        let mut statuses = s.statuses.clone();
-        let mut acc = vec![0.0; self.chain.n_dofs()];
-        opening_model_constrained(
-            &mass,
-            &load,
-            &g,
+    /// The opening model's configuration at `s` under `ag` (left in `self.work.chosen`), and
+    /// whether it moves anything.
+    pub(super) fn choice(&mut self, s: &LoopState, ag: f64) -> Result<bool, LoopError> {
+        let chain = self.chain;
+        let m = chain.n_dofs();
+        let Work {
+            pose,
+            mass,
+            mass_dofs,
+            load,
+            velocity_load,
+            velocity_sums,
+            g,
+            chosen: statuses,
+            acc,
+            opening_model,
+            ..
+        } = &mut self.work;
+        chain.pose_into(&s.phi, pose);
+        chain.mass_matrix_with(pose, mass, mass_dofs);
+        // `q + f`: `Chain::load_entry` is `Chain::load_vector`'s entry (the same arithmetic).
+        velocity_load.clear();
+        velocity_load.resize(m, 0.0);
+        chain.velocity_load_into(pose, &s.phi, &s.rates, velocity_load, velocity_sums);
+        let gravity = self.options.gravity;
+        load.clear();
+        load.extend((0..m).map(|a| chain.load_entry(pose, a, ag, gravity) + velocity_load[a]));
+        chain.closure_matrix_into(pose, g);
+        // A loop's `Ġ v` (`Chain::closure_rate`), negated.
+        let rhs = chain.closure_rate_of(pose, &s.rates).map(|x| -x);
+        statuses.clone_from(&s.statuses);
+        acc.clear();
+        acc.resize(m, 0.0);
+        opening_model_constrained_in(
+            mass,
+            load,
+            g,
             Some(&rhs),
-            &mut statuses,
-            &mut acc,
+            statuses,
+            acc,
             &self.options.model,
+            opening_model,
         )?;
         // A joint the model opens with zero acceleration (to round-off) at zero angle and rate
         // does not move: it stays closed (else it chatters back through zero at once).
@@ -94,24 +116,25 @@ impl Runner<'_> {
             }
         }
         let moves = acc.iter().any(|&a| a != 0.0);
-        Ok((statuses, moves))
+        Ok(moves)
     }
 
     /// The interval of ground accelerations the closed loop at rest `s` resists, by bisection on
     /// each side with the opening model (to 1e-9 relative; its ends are accelerations the model
     /// answered "at rest" to). `(0, 0)` if it does not resist `a_g = 0`.
-    pub(super) fn resisted_interval(&self, s: &LoopState) -> Result<(f64, f64), LoopError> {
-        let opens = |ag: f64| self.choice(s, ag).map(|c| c.1);
+    pub(super) fn resisted_interval(&mut self, s: &LoopState) -> Result<(f64, f64), LoopError> {
+        let gravity = self.options.gravity;
+        let mut opens = |ag: f64| self.choice(s, ag);
         if opens(0.0)? {
             return Ok((0.0, 0.0));
         }
         let mut ends = [0.0; 2];
         for (end, sign) in ends.iter_mut().zip([-1.0, 1.0]) {
-            let (mut lo, mut hi) = (0.0, 0.01 * self.options.gravity);
+            let (mut lo, mut hi) = (0.0, 0.01 * gravity);
             while !opens(sign * hi)? {
                 lo = hi;
                 hi *= 2.0;
-                if hi > 1e3 * self.options.gravity {
+                if hi > 1e3 * gravity {
                     break;
                 }
             }

@@ -11,10 +11,37 @@
 use super::equations::solve_in_place;
 use crate::chain::{Chain, ChainPose};
 
+/// Buffers of the projections, kept from one call to the next (the driver's projections after
+/// every step and at every event allocate nothing once they have grown).
+#[derive(Default)]
+pub(super) struct ProjectionWork {
+    kkt: KktWork,
+    /// The closure matrix (rates) or the residual's Jacobian (positions), `3 × m`.
+    rows: Vec<f64>,
+    /// The moving DOFs' joints, pivots and rates, and `M_F· v` (rates).
+    moving: Vec<((usize, [f64; 2]), f64)>,
+    b: Vec<f64>,
+    /// The Newton step's DOFs, correction, trial angles, held DOFs and the trial's pose.
+    free: Vec<usize>,
+    dx: Vec<f64>,
+    trial: Vec<f64>,
+    held: Vec<usize>,
+    trial_pose: ChainPose,
+}
+
+/// The KKT matrix and right-hand side, the open DOFs' joints and pivots.
+#[derive(Default)]
+struct KktWork {
+    mat: Vec<f64>,
+    rhs: Vec<f64>,
+    piv: Vec<(usize, [f64; 2])>,
+}
+
 /// Solves `[M_FF A_Fᵀ; A_F 0][y; μ] = [b; c]` for `y` (in `b`'s place), `M_FF` the mass
 /// entries of the DOFs `open` in the pose (built in place by [`Chain::mass_block_into`]: the
 /// same formula as [`Chain::mass_matrix`]'s, the same numbers to the bit), `a` the `3 × m`
-/// constraint rows. `false` when singular.
+/// constraint rows; `work` is scratch. `false` when singular.
+#[allow(clippy::too_many_arguments)]
 fn kkt(
     chain: &Chain,
     pose: &ChainPose,
@@ -23,13 +50,18 @@ fn kkt(
     open: &[usize],
     b: &mut [f64],
     c: [f64; 3],
+    work: &mut KktWork,
 ) -> bool {
+    let KktWork { mat, rhs, piv } = work;
     let nf = open.len();
     let k = nf + 3;
-    let mut mat = vec![0.0; k * k];
-    let mut rhs = vec![0.0; k];
-    let piv: Vec<(usize, [f64; 2])> = open.iter().map(|&d| chain.dof_pivot(pose, d)).collect();
-    chain.mass_block_into(pose, &piv, &mut mat, k);
+    mat.clear();
+    mat.resize(k * k, 0.0);
+    rhs.clear();
+    rhs.resize(k, 0.0);
+    piv.clear();
+    piv.extend(open.iter().map(|&d| chain.dof_pivot(pose, d)));
+    chain.mass_block_into(pose, piv, mat, k);
     for (i, &di) in open.iter().enumerate() {
         for r in 0..3 {
             mat[i * k + nf + r] = a[r * m + di];
@@ -38,7 +70,7 @@ fn kkt(
         rhs[i] = b[i];
     }
     rhs[nf..].copy_from_slice(&c);
-    if !solve_in_place(&mut mat, &mut rhs) {
+    if !solve_in_place(mat, rhs) {
         return false;
     }
     b.copy_from_slice(&rhs[..nf]);
@@ -63,34 +95,52 @@ fn mass_row_times_rates(chain: &Chain, pose: &ChainPose, d: usize, rates: &[f64]
 /// loop closed (`G v = 0`): the rates of every other DOF are removed (a locked joint, SPEC §5's
 /// settling with the closure). Returns `false` (rates untouched) when the KKT system is singular.
 pub fn project_rates(chain: &Chain, pose: &ChainPose, open: &[usize], rates: &mut [f64]) -> bool {
+    project_rates_with(chain, pose, open, rates, &mut ProjectionWork::default())
+}
+
+/// [`project_rates`] with the buffers of `work`.
+pub(super) fn project_rates_with(
+    chain: &Chain,
+    pose: &ChainPose,
+    open: &[usize],
+    rates: &mut [f64],
+    work: &mut ProjectionWork,
+) -> bool {
     let m = chain.n_dofs();
-    let g = chain.closure_matrix(pose);
+    let ProjectionWork {
+        kkt: kkt_work,
+        rows: g,
+        moving,
+        b,
+        ..
+    } = work;
+    chain.closure_matrix_into(pose, g);
     // `M_F· v` over the moving DOFs only, each DOF's joint and pivot found once. The sum over
     // all `m` DOFs in order (a `+0.0` for each still one) is the same sum: adding `+0.0` leaves
     // every partial sum but a zero as it is, and once a non-zero term arrives the partial sums
     // agree; only a sum that ends at zero may differ (in its sign), and that one is taken again
     // over all `m` as before.
-    let moving: Vec<((usize, [f64; 2]), f64)> = (0..m)
-        .filter(|&e| rates[e] != 0.0)
-        .map(|e| (chain.dof_pivot(pose, e), rates[e]))
-        .collect();
+    moving.clear();
+    moving.extend(
+        (0..m)
+            .filter(|&e| rates[e] != 0.0)
+            .map(|e| (chain.dof_pivot(pose, e), rates[e])),
+    );
     let still = moving.len() < m;
-    let mut b: Vec<f64> = open
-        .iter()
-        .map(|&d| {
-            let pd = chain.dof_pivot(pose, d);
-            let sum: f64 = moving
-                .iter()
-                .map(|&(pe, r)| chain.mass_entry_of(pose, pd, pe) * r)
-                .sum();
-            if sum == 0.0 && still {
-                mass_row_times_rates(chain, pose, d, rates)
-            } else {
-                sum
-            }
-        })
-        .collect();
-    if !kkt(chain, pose, &g, m, open, &mut b, [0.0; 3]) {
+    b.clear();
+    b.extend(open.iter().map(|&d| {
+        let pd = chain.dof_pivot(pose, d);
+        let sum: f64 = moving
+            .iter()
+            .map(|&(pe, r)| chain.mass_entry_of(pose, pd, pe) * r)
+            .sum();
+        if sum == 0.0 && still {
+            mass_row_times_rates(chain, pose, d, rates)
+        } else {
+            sum
+        }
+    }));
+    if !kkt(chain, pose, g, m, open, b, [0.0; 3], kkt_work) {
         return false;
     }
     rates.iter_mut().for_each(|r| *r = 0.0);
@@ -117,11 +167,13 @@ pub fn project_positions(
     iterations: usize,
 ) -> f64 {
     let mut pose = chain.pose(phi);
-    project_positions_posed(chain, open, phi, reach, iterations, &mut pose)
+    let mut work = ProjectionWork::default();
+    project_positions_posed(chain, open, phi, reach, iterations, &mut pose, &mut work)
 }
 
-/// [`project_positions`] with `pose` the pose of `phi` on entry; on return the pose of the
-/// final `phi` (the driver's next uses of it need not build it again).
+/// [`project_positions`] with `pose` the pose of `phi` on entry and the buffers of `work`; on
+/// return `pose` is the pose of the final `phi` (the driver's next uses of it need not build it
+/// again).
 pub(super) fn project_positions_posed(
     chain: &Chain,
     open: &[usize],
@@ -129,33 +181,59 @@ pub(super) fn project_positions_posed(
     reach: f64,
     iterations: usize,
     pose: &mut ChainPose,
+    work: &mut ProjectionWork,
 ) -> f64 {
     let m = chain.n_dofs();
     let size = |r: [f64; 3]| r[1].hypot(r[2]).max(r[0].abs() * reach);
     let depth = |d: usize, x: f64| if d < m / 2 { -x } else { x };
+    let ProjectionWork {
+        kkt: kkt_work,
+        rows: jac,
+        free,
+        dx,
+        trial,
+        held,
+        trial_pose,
+        ..
+    } = work;
     let mut r = chain.closure_residual(pose);
-    let mut trial_pose = ChainPose::default();
     for _ in 0..iterations {
         if size(r) == 0.0 {
             break;
         }
         let o = chain.joints()[chain.n_joints() - 1].centre;
         let moved = pose.support.apply(o);
-        let mut jac = vec![0.0; 3 * m];
+        // Zero on the DOFs not open (read by nothing but the KKT rows of `free ⊆ open`).
+        jac.clear();
+        jac.resize(3 * m, 0.0);
         for &a in open {
             let p = chain.pivot(pose, a);
             jac[a] = 1.0;
             jac[m + a] = p[1] - moved[1];
             jac[2 * m + a] = moved[0] - p[0];
         }
-        let mut free: Vec<usize> = open.to_vec();
-        let trial = loop {
-            let mut dx = vec![0.0; free.len()];
-            if free.len() < 3 || !kkt(chain, pose, &jac, m, &free, &mut dx, [-r[0], -r[1], -r[2]]) {
-                break None;
+        free.clear();
+        free.extend_from_slice(open);
+        let found = loop {
+            dx.clear();
+            dx.resize(free.len(), 0.0);
+            if free.len() < 3
+                || !kkt(
+                    chain,
+                    pose,
+                    jac,
+                    m,
+                    free,
+                    dx,
+                    [-r[0], -r[1], -r[2]],
+                    kkt_work,
+                )
+            {
+                break false;
             }
-            let mut trial = phi.to_vec();
-            let mut held = Vec::new();
+            trial.clear();
+            trial.extend_from_slice(phi);
+            held.clear();
             for (i, &d) in free.iter().enumerate() {
                 let x = trial[d] + dx[i];
                 if depth(d, x) < 0.0 {
@@ -164,21 +242,21 @@ pub(super) fn project_positions_posed(
                 trial[d] = x;
             }
             if held.is_empty() {
-                break Some(trial);
+                break true;
             }
             free.retain(|f| !held.contains(f));
         };
-        let Some(trial) = trial else {
+        if !found {
             break;
-        };
+        }
         // The trial's pose in the memory of the last one (a pose is rebuilt whole).
-        chain.pose_into(&trial, &mut trial_pose);
-        let trial_r = chain.closure_residual(&trial_pose);
+        chain.pose_into(trial, trial_pose);
+        let trial_r = chain.closure_residual(trial_pose);
         if size(trial_r) >= size(r) {
             break;
         }
-        phi.copy_from_slice(&trial);
-        std::mem::swap(pose, &mut trial_pose);
+        phi.copy_from_slice(trial);
+        std::mem::swap(pose, trial_pose);
         r = trial_r;
     }
     size(r)

@@ -129,6 +129,18 @@ impl LoopState {
     pub fn open_dofs(&self) -> Vec<usize> {
         crate::model::configuration::open_dofs(&self.statuses)
     }
+
+    /// [`LoopState::open_dofs`] into `out` (cleared first), reusing its memory.
+    pub fn open_dofs_into(&self, out: &mut Vec<usize>) {
+        let n = self.statuses.len();
+        out.clear();
+        out.extend(
+            self.statuses
+                .iter()
+                .enumerate()
+                .filter_map(|(k, s)| s.dof(k, n)),
+        );
+    }
 }
 
 /// What happened.

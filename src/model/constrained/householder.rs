@@ -4,7 +4,7 @@
 //! reflectors are applied to vectors and to symmetric matrices.
 
 /// A rank-revealing QR factorisation `Kᵀ Π = Q R` of the `k × c` matrix `Kᵀ`.
-#[derive(Clone, Debug, Default)]
+#[derive(Debug, Default)]
 pub(crate) struct PivotedQr {
     /// Rows of `Kᵀ` (the size of the face).
     pub k: usize,
@@ -22,6 +22,26 @@ pub(crate) struct PivotedQr {
     beta: Vec<f64>,
     work: Vec<f64>,
     full: Vec<f64>,
+}
+
+impl Clone for PivotedQr {
+    fn clone(&self) -> Self {
+        let mut qr = PivotedQr::default();
+        qr.clone_from(self);
+        qr
+    }
+
+    /// The factors copied into the memory of `self`; the scratch of [`PivotedQr::congruence`]
+    /// is not copied (it is overwritten before it is read).
+    fn clone_from(&mut self, source: &Self) {
+        self.k = source.k;
+        self.c = source.c;
+        self.rank = source.rank;
+        self.r.clone_from(&source.r);
+        self.perm.clone_from(&source.perm);
+        self.vecs.clone_from(&source.vecs);
+        self.beta.clone_from(&source.beta);
+    }
 }
 
 impl PivotedQr {

@@ -15,7 +15,8 @@
 use crate::error::{ErrorKind, RockingError};
 use crate::model::cone::{ConeProblem, ConeSolution, Generator, ModelOptions, ModelReport};
 use crate::model::configuration::{self, Status};
-use crate::model::constrained::{check_constraints, problem::ConstrainedProblem, solve};
+use crate::model::constrained::problem::{ConstrainedProblem, ConstrainedWork};
+use crate::model::constrained::{check_constraints, solve_in};
 use crate::model::impact::{
     check_mass, check_mass_size, check_positive_definite, kinetic_energy, row_times_moving,
 };
@@ -41,14 +42,45 @@ pub fn impact_model_constrained(
 ) -> Result<ModelReport, RockingError> {
     options.validate()?;
     check_mass(statuses.len(), mass)?;
-    impact_model_constrained_checked(mass, constraints, statuses, velocity, closing, options)
+    let mut work = ImpactWork::default();
+    impact_model_constrained_checked(
+        mass,
+        constraints,
+        statuses,
+        velocity,
+        closing,
+        options,
+        &mut work,
+    )
+}
+
+/// Buffers of the impact model, reused from one impact to the next (the loop driver's): its
+/// constrained problems' and solver's, its configurations and rates.
+#[derive(Default)]
+pub(crate) struct ImpactWork {
+    problem: ConstrainedWork,
+    /// The closing joints and their plans, which still rotate, which joints were open.
+    closing_joints: Vec<usize>,
+    plan: Vec<(usize, f64, f64, f64)>,
+    rotating: Vec<bool>,
+    open_before: Vec<bool>,
+    /// The configuration and rates through the bumps, the next rates, `M v` and its moving DOFs.
+    st: Vec<Status>,
+    v: Vec<f64>,
+    y: Vec<f64>,
+    rhs: Vec<f64>,
+    moving: Vec<usize>,
+    /// The constraints' zero right-hand side, a bump's generators and the closing joints' ones.
+    zero_rhs: Vec<f64>,
+    gens: Vec<Generator>,
+    impacting: Vec<Option<usize>>,
 }
 
 /// [`impact_model_constrained`] for a mass matrix symmetric to the bit by construction
 /// ([`crate::chain::Chain::mass_matrix`]: its lower triangle is a copy of the upper): the
 /// symmetry sweep of [`check_mass`], whose verdict is then always a pass, is not taken; the
 /// size and finiteness checks are. The same answers (and errors) as
-/// [`impact_model_constrained`] for such a matrix.
+/// [`impact_model_constrained`] for such a matrix, in the buffers of `work`.
 pub(crate) fn impact_model_constrained_symmetric(
     mass: &[f64],
     constraints: &[f64],
@@ -56,13 +88,22 @@ pub(crate) fn impact_model_constrained_symmetric(
     velocity: &mut [f64],
     closing: &[bool],
     options: &ModelOptions,
+    work: &mut ImpactWork,
 ) -> Result<ModelReport, RockingError> {
     options.validate()?;
     let n = statuses.len();
     check_mass_size(n, mass)?;
     configuration::check_finite("mass", mass)?;
     debug_assert!(check_mass(n, mass).is_ok());
-    impact_model_constrained_checked(mass, constraints, statuses, velocity, closing, options)
+    impact_model_constrained_checked(
+        mass,
+        constraints,
+        statuses,
+        velocity,
+        closing,
+        options,
+        work,
+    )
 }
 
 /// The model once the options and the mass matrix have passed their checks.
@@ -73,6 +114,7 @@ fn impact_model_constrained_checked(
     velocity: &mut [f64],
     closing: &[bool],
     options: &ModelOptions,
+    work: &mut ImpactWork,
 ) -> Result<ModelReport, RockingError> {
     let n = statuses.len();
     let m = 2 * n;
@@ -85,14 +127,30 @@ fn impact_model_constrained_checked(
             format!("closing has {} flags, expected n = {n}", closing.len()),
         ));
     }
-    let closing_joints: Vec<usize> = (0..n).filter(|&k| closing[k]).collect();
+    let ImpactWork {
+        problem: problem_work,
+        closing_joints,
+        plan,
+        rotating,
+        open_before,
+        st,
+        v,
+        y,
+        rhs,
+        moving,
+        zero_rhs,
+        gens: spare_gens,
+        impacting,
+    } = work;
+    closing_joints.clear();
+    closing_joints.extend((0..n).filter(|&k| closing[k]));
     if closing_joints.is_empty() {
         return Err(RockingError::new(
             ErrorKind::InvalidClosingInterface,
             "no joint is flagged as closing",
         ));
     }
-    for &k in &closing_joints {
+    for &k in closing_joints.iter() {
         let corner = statuses[k];
         let Some(dof) = corner.dof(k, n) else {
             return Err(RockingError::new(
@@ -121,33 +179,37 @@ fn impact_model_constrained_checked(
         check_positive_definite(mass, m)?;
     }
 
-    let mut st = statuses.to_vec();
-    let mut v = velocity.to_vec();
+    st.clear();
+    st.extend_from_slice(statuses);
+    v.clear();
+    v.extend_from_slice(velocity);
     let mut report = ModelReport::empty(options.solver);
-    report.kinetic_before = kinetic_energy(mass, &v);
+    report.kinetic_before = kinetic_energy(mass, v);
     report.changed = true;
     report.runner_up = f64::NAN;
     // For each closing joint: its direction of rotation (kept through the bumps) and the weight
     // λ of its left-corner DOF at the closing corner and at the opposite one.
-    let plan: Vec<(usize, f64, f64, f64)> = closing_joints
-        .iter()
-        .map(|&k| {
-            let corner = statuses[k];
-            let (start, end) = if corner == Status::OpenLeft {
-                (1.0, 0.0)
-            } else {
-                (0.0, 1.0)
-            };
-            (k, -corner.sign(), start, end)
-        })
-        .collect();
-    let mut rotating = vec![true; plan.len()];
-    let open_before: Vec<bool> = statuses.iter().map(|s| s.is_open()).collect();
-    let zero_rhs = vec![0.0; nc];
+    plan.clear();
+    plan.extend(closing_joints.iter().map(|&k| {
+        let corner = statuses[k];
+        let (start, end) = if corner == Status::OpenLeft {
+            (1.0, 0.0)
+        } else {
+            (0.0, 1.0)
+        };
+        (k, -corner.sign(), start, end)
+    }));
+    rotating.clear();
+    rotating.resize(plan.len(), true);
+    open_before.clear();
+    open_before.extend(statuses.iter().map(|s| s.is_open()));
+    zero_rhs.clear();
+    zero_rhs.resize(nc, 0.0);
     let n_imp = options.n_impacts;
-    let mut moving: Vec<usize> = Vec::with_capacity(m);
     for step in 1..=n_imp {
-        let mut gens = Vec::with_capacity(2 * n);
+        let mut gens = std::mem::take(spare_gens);
+        gens.clear();
+        gens.reserve(2 * n);
         for (j, s) in st.iter().enumerate() {
             if closing[j] {
                 continue;
@@ -160,7 +222,7 @@ fn impact_model_constrained_checked(
                 }
             }
         }
-        let mut impacting = Vec::with_capacity(plan.len());
+        impacting.clear();
         for (u, &(k, direction, start, end)) in plan.iter().enumerate() {
             if !rotating[u] {
                 impacting.push(None);
@@ -184,31 +246,30 @@ fn impact_model_constrained_checked(
         // `M v`, each row's sum over the moving DOFs only (`row_times_moving`).
         moving.clear();
         moving.extend((0..m).filter(|&d| v[d] != 0.0));
-        let mut rhs = vec![0.0; m];
-        for (r, o) in rhs.iter_mut().enumerate() {
-            *o = row_times_moving(&mass[r * m..(r + 1) * m], &v, &moving);
-        }
-        let (sol, y, scaled_gens): (ConeSolution, Vec<f64>, Vec<Generator>) = if nc == 0 {
-            let problem = ConeProblem::new(gens, mass, m, &rhs, options.tolerance)?;
+        rhs.clear();
+        rhs.extend((0..m).map(|r| row_times_moving(&mass[r * m..(r + 1) * m], v, moving)));
+        let (sol, scaled_gens): (ConeSolution, Vec<Generator>) = if nc == 0 {
+            let problem = ConeProblem::new(gens, mass, m, rhs, options.tolerance)?;
             let sol = crate::model::solver::solve(&problem, options)?;
-            let y = problem.dof_vector(&sol.y_hat, m);
-            (sol, y, problem.gens)
+            problem.dof_vector_into(&sol.y_hat, m, y);
+            (sol, problem.gens)
         } else {
-            let problem = ConstrainedProblem::new(
+            let problem = ConstrainedProblem::new_in(
                 gens,
                 mass,
                 m,
-                &rhs,
+                rhs,
                 constraints,
                 nc,
-                &zero_rhs,
+                zero_rhs,
                 options.tolerance,
+                problem_work,
             )?;
-            let sol = solve(&problem, options)?;
-            let y = problem.cone.dof_vector(&sol.y_hat, m);
-            (sol, y, problem.cone.gens)
+            let sol = solve_in(&problem, options, problem_work)?;
+            problem.cone.dof_vector_into(&sol.y_hat, m, y);
+            (sol, problem_work.recycle(problem))
         };
-        v = y;
+        std::mem::swap(v, y);
         for j in (0..n).filter(|&j| !closing[j] && !open_before[j]) {
             st[j] = Status::Closed;
         }
@@ -231,6 +292,11 @@ fn impact_model_constrained_checked(
                 rotating[u] = sol.y_hat[g] > 0.0;
             }
         }
+        // The generators' and the solution's memory for the next bump or impact.
+        *spare_gens = scaled_gens;
+        if nc > 0 {
+            problem_work.keep_point(sol.y_hat);
+        }
         if !rotating.iter().any(|&r| r) {
             break;
         }
@@ -248,9 +314,9 @@ fn impact_model_constrained_checked(
             v[n + k] = 0.0;
         }
     }
-    report.kinetic_after = kinetic_energy(mass, &v);
-    configuration::check_result(&v, &[report.kinetic_before, report.kinetic_after])?;
-    statuses.copy_from_slice(&st);
-    velocity.copy_from_slice(&v);
+    report.kinetic_after = kinetic_energy(mass, v);
+    configuration::check_result(v, &[report.kinetic_before, report.kinetic_after])?;
+    statuses.copy_from_slice(st);
+    velocity.copy_from_slice(v);
     Ok(report)
 }

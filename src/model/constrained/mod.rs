@@ -8,7 +8,8 @@
 //!   DOF set) and the null-space solve of one face;
 //! - `enumeration`: the reference (every configuration);
 //! - `projection`: primal active set with constraints, branch and bound;
-//! - `impact`, `opening`: the two models.
+//! - `impact`, `opening`: the two models;
+//! - `work`: the buffers a problem is built and solved in, reused from one to the next.
 
 mod enumeration;
 mod householder;
@@ -16,10 +17,13 @@ mod impact;
 mod opening;
 mod problem;
 mod projection;
+mod work;
 
 pub use impact::impact_model_constrained;
-pub(crate) use impact::impact_model_constrained_symmetric;
+pub(crate) use impact::{impact_model_constrained_symmetric, ImpactWork};
 pub use opening::opening_model_constrained;
+pub(crate) use opening::opening_model_constrained_in;
+pub(crate) use problem::ConstrainedWork;
 
 use crate::error::{ErrorKind, RockingError};
 use crate::model::cone::{ConeSolution, ModelOptions, Solver};
@@ -45,9 +49,11 @@ fn check_constraints(constraints: &[f64], m: usize) -> Result<usize, RockingErro
 /// [`Solver::Auto`] enumerate for few closed joints, project above. The enumeration limit counts
 /// the closed joints and every closing joint but the first (`3^closed × 2^closing`
 /// configurations; one closing joint is free, as for a column).
-fn solve(
+/// The projection solver's buffers are `work`'s.
+fn solve_in(
     problem: &ConstrainedProblem,
     options: &ModelOptions,
+    work: &mut ConstrainedWork,
 ) -> Result<ConeSolution, RockingError> {
     let n_closed = problem.cone.groups.len();
     let n_choices = n_closed + problem.cone.singles.len().saturating_sub(1);
@@ -78,6 +84,6 @@ fn solve(
             }
             enumeration::solve(problem)
         }
-        _ => projection::solve(problem),
+        _ => projection::solve_in(problem, work),
     }
 }

@@ -12,7 +12,8 @@
 use crate::error::{ErrorKind, RockingError};
 use crate::model::cone::{ConeProblem, ModelOptions, ModelReport};
 use crate::model::configuration::{self, Status};
-use crate::model::constrained::{check_constraints, problem::ConstrainedProblem, solve};
+use crate::model::constrained::problem::{ConstrainedProblem, ConstrainedWork};
+use crate::model::constrained::{check_constraints, solve_in};
 use crate::model::impact::{check_mass, check_positive_definite};
 use crate::model::opening::generators;
 
@@ -36,6 +37,32 @@ pub fn opening_model_constrained(
     acceleration: &mut [f64],
     options: &ModelOptions,
 ) -> Result<ModelReport, RockingError> {
+    let mut work = ConstrainedWork::default();
+    opening_model_constrained_in(
+        mass,
+        load,
+        constraints,
+        constraint_rhs,
+        statuses,
+        acceleration,
+        options,
+        &mut work,
+    )
+}
+
+/// [`opening_model_constrained`] with its constrained problem built and solved in the buffers
+/// of `work` (the loop driver's openings): the same answers.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn opening_model_constrained_in(
+    mass: &[f64],
+    load: &[f64],
+    constraints: &[f64],
+    constraint_rhs: Option<&[f64]>,
+    statuses: &mut [Status],
+    acceleration: &mut [f64],
+    options: &ModelOptions,
+    work: &mut ConstrainedWork,
+) -> Result<ModelReport, RockingError> {
     options.validate()?;
     let n = statuses.len();
     check_mass(n, mass)?;
@@ -44,7 +71,7 @@ pub fn opening_model_constrained(
     configuration::check_finite("load", load)?;
     configuration::check_dof_vector("acceleration", acceleration, m)?;
     let nc = check_constraints(constraints, m)?;
-    let zeros = vec![0.0; nc];
+    let zeros;
     let rhs = match constraint_rhs {
         Some(r) if r.len() != nc => {
             return Err(RockingError::new(
@@ -59,7 +86,10 @@ pub fn opening_model_constrained(
             configuration::check_finite("constraint_rhs", r)?;
             r
         }
-        None => &zeros,
+        None => {
+            zeros = vec![0.0; nc];
+            &zeros
+        }
     };
     let (sol, a, gens) = if nc == 0 {
         check_positive_definite(mass, m)?;
@@ -68,7 +98,7 @@ pub fn opening_model_constrained(
         let a = problem.dof_vector(&sol.y_hat, m);
         (sol, a, problem.gens)
     } else {
-        let problem = ConstrainedProblem::new(
+        let problem = ConstrainedProblem::new_in(
             generators(statuses),
             mass,
             m,
@@ -77,10 +107,11 @@ pub fn opening_model_constrained(
             nc,
             rhs,
             options.tolerance,
+            work,
         )?;
-        let sol = solve(&problem, options)?;
+        let sol = solve_in(&problem, options, work)?;
         let a = problem.cone.dof_vector(&sol.y_hat, m);
-        (sol, a, problem.cone.gens)
+        (sol, a, work.recycle(problem))
     };
     let mut st = statuses.to_vec();
     let mut changed = false;

@@ -20,6 +20,8 @@ use crate::error::{ErrorKind, RockingError};
 use crate::model::cholesky;
 use crate::model::cone::{ConeProblem, Generator};
 use crate::model::constrained::householder::PivotedQr;
+pub(crate) use crate::model::constrained::work::ConstrainedWork;
+use crate::model::constrained::work::{groups_into, singles_into};
 
 /// A diagonal entry of `DᵀMD` below this fraction of the largest is a massless generator.
 const MASSLESS: f64 = 1e-12;
@@ -44,7 +46,7 @@ pub(crate) struct ConstrainedProblem {
     /// The factors of every generator's constraint columns with every row (`reduce_rows`'s,
     /// when it kept all the rows): the definiteness check and the first branch's rows factor
     /// the same matrix (the same bits) and take them from here.
-    all_qr: Option<PivotedQr>,
+    pub(super) all_qr: Option<PivotedQr>,
 }
 
 /// Buffers of the face solves.
@@ -109,8 +111,12 @@ impl ConstrainedProblem {
     /// is not positive definite on the null space of the constraints, and with
     /// [`ErrorKind::InconsistentState`] when the free generators (the open DOFs, which the model
     /// keeps) cannot satisfy the constraints: the configuration as given does not close.
+    ///
+    /// Built in the memory of `work`: the storage of the last problem given back by
+    /// [`ConstrainedWork::recycle`] and the buffers of the checks (the same problem as in new
+    /// memory).
     #[allow(clippy::too_many_arguments)]
-    pub fn new(
+    pub fn new_in(
         gens: Vec<Generator>,
         mass: &[f64],
         m: usize,
@@ -119,11 +125,19 @@ impl ConstrainedProblem {
         nc: usize,
         g_rhs: &[f64],
         tolerance: f64,
+        work: &mut ConstrainedWork,
     ) -> Result<ConstrainedProblem, RockingError> {
         let p = gens.len();
-        let mut a = vec![0.0; p * p];
-        let mut b = vec![0.0; p];
-        let mut cg = vec![0.0; nc * p];
+        let spare = &mut work.spare;
+        let mut a = std::mem::take(&mut spare.a);
+        a.clear();
+        a.resize(p * p, 0.0);
+        let mut b = std::mem::take(&mut spare.b);
+        b.clear();
+        b.resize(p, 0.0);
+        let cg = &mut work.kt;
+        cg.clear();
+        cg.resize(nc * p, 0.0);
         for i in 0..p {
             let ti = gens[i].terms();
             for j in i..p {
@@ -161,7 +175,9 @@ impl ConstrainedProblem {
         if p > 0 && (dmax.is_nan() || dmax <= 0.0) {
             return Err(not_pd("no DOF of the configuration carries mass"));
         }
-        let mut scale = vec![0.0; p];
+        let mut scale = std::mem::take(&mut spare.scale);
+        scale.clear();
+        scale.resize(p, 0.0);
         for i in 0..p {
             let d = a[i * p + i];
             if d.is_nan() || d < -MASSLESS * dmax {
@@ -189,8 +205,11 @@ impl ConstrainedProblem {
             }
         }
         // Normalise the rows; a row that touches no generator must have a zero right-hand side.
-        let mut rows = Vec::with_capacity(nc);
-        let mut rr = Vec::with_capacity(nc);
+        let mut rows = std::mem::take(&mut spare.c);
+        rows.clear();
+        rows.reserve(nc * p);
+        let mut rr = std::mem::take(&mut spare.r);
+        rr.clear();
         for row in 0..nc {
             let norm = cg[row * p..(row + 1) * p]
                 .iter()
@@ -212,9 +231,15 @@ impl ConstrainedProblem {
             }
         }
         let bmax = b.iter().fold(0.0_f64, |acc, v| acc.max(v.abs()));
+        let (mut groups, mut singles) = (
+            std::mem::take(&mut spare.groups),
+            std::mem::take(&mut spare.singles),
+        );
+        groups_into(&gens, &mut spare.members, &mut groups);
+        singles_into(&gens, &mut singles);
         let cone = ConeProblem {
-            groups: groups_of(&gens),
-            singles: singles_of(&gens),
+            groups,
+            singles,
             gens,
             a,
             b,
@@ -222,16 +247,19 @@ impl ConstrainedProblem {
             threshold: tolerance * bmax,
             tolerance,
         };
+        let mut start = std::mem::take(&mut spare.start);
+        start.clear();
+        start.resize(p, 0.0);
         let mut problem = ConstrainedProblem {
             cone,
             nc: rr.len(),
             c: rows,
             r: rr,
-            start: vec![0.0; p],
+            start,
             all_qr: None,
         };
-        problem.reduce_rows()?;
-        problem.find_start()?;
+        problem.reduce_rows(work)?;
+        problem.find_start(work)?;
         // The gradient scale of a problem with a non-zero right-hand side includes Â ŷ₀.
         let mut grad_scale = bmax;
         for i in 0..p {
@@ -242,12 +270,14 @@ impl ConstrainedProblem {
         problem.cone.threshold = tolerance * grad_scale;
         // Positive definiteness on the null space of all constraint columns: every face's
         // reduced matrix is a principal part of it.
-        let all: Vec<usize> = (0..p).collect();
-        let rows_all: Vec<usize> = (0..problem.nc).collect();
+        let (all, rows_all) = (&mut work.all, &mut work.rows);
+        all.clear();
+        all.extend(0..p);
+        rows_all.clear();
+        rows_all.extend(0..problem.nc);
         // Only the factor's success is needed here (the face solve's first half, the same
         // operations: the same verdict to the bit).
-        let mut ws = FaceWork::default();
-        problem.factor_face(&all, &rows_all, &mut ws)?;
+        problem.factor_face(all, rows_all, &mut work.face)?;
         Ok(problem)
     }
 
@@ -258,22 +288,28 @@ impl ConstrainedProblem {
 
     /// Keeps a linearly independent subset of the constraint rows; a dependent row's right-hand
     /// side must be the same combination of the others'.
-    fn reduce_rows(&mut self) -> Result<(), RockingError> {
+    fn reduce_rows(&mut self, work: &mut ConstrainedWork) -> Result<(), RockingError> {
         let (p, nc) = (self.p(), self.nc);
         if nc == 0 {
             return Ok(());
         }
-        let mut kt = vec![0.0; p * nc];
+        let kt = &mut work.kt;
+        kt.clear();
+        kt.resize(p * nc, 0.0);
         for i in 0..p {
             for row in 0..nc {
                 kt[i * nc + row] = self.c[row * p + i];
             }
         }
-        let mut qr = PivotedQr::default();
-        qr.factor(&mut kt, p, nc, RANK_TOLERANCE);
-        let mut u = vec![0.0; p];
-        let residual = qr.solve_range(&self.r, &mut u);
+        // The factors of every row, kept by the problem when they are all independent.
+        let mut qr = std::mem::take(&mut work.spare.all_qr);
+        qr.factor(kt, p, nc, RANK_TOLERANCE);
+        let u = &mut work.u;
+        u.clear();
+        u.resize(p, 0.0);
+        let residual = qr.solve_range(&self.r, u);
         if residual > CONSISTENCY * (1.0 + self.rmax()) {
+            work.spare.all_qr = qr;
             return Err(RockingError::new(
                 ErrorKind::InconsistentState,
                 format!(
@@ -285,14 +321,20 @@ impl ConstrainedProblem {
         if qr.rank == nc {
             self.all_qr = Some(qr);
         } else {
-            let keep: Vec<usize> = qr.perm[..qr.rank].to_vec();
-            let mut c = Vec::with_capacity(keep.len() * p);
-            for &row in &keep {
+            let keep = &qr.perm[..qr.rank];
+            let c = &mut work.kt;
+            c.clear();
+            c.reserve(keep.len() * p);
+            for &row in keep {
                 c.extend_from_slice(&self.c[row * p..(row + 1) * p]);
             }
-            self.r = keep.iter().map(|&row| self.r[row]).collect();
-            self.c = c;
+            std::mem::swap(&mut self.c, c);
+            let r = &mut work.rhs;
+            r.clear();
+            r.extend(keep.iter().map(|&row| self.r[row]));
+            std::mem::swap(&mut self.r, r);
             self.nc = keep.len();
+            work.spare.all_qr = qr;
         }
         Ok(())
     }
@@ -312,14 +354,17 @@ impl ConstrainedProblem {
     }
 
     /// The minimum-norm point of the free generators that satisfies the constraints.
-    fn find_start(&mut self) -> Result<(), RockingError> {
-        let free: Vec<usize> = (0..self.p())
-            .filter(|&i| !self.cone.gens[i].bounded)
-            .collect();
-        let rows: Vec<usize> = (0..self.nc).collect();
-        let mut qr = PivotedQr::default();
-        let mut u = vec![0.0; free.len()];
-        let residual = self.particular(&free, &rows, &mut qr, &mut u);
+    fn find_start(&mut self, work: &mut ConstrainedWork) -> Result<(), RockingError> {
+        let free = &mut work.all;
+        free.clear();
+        free.extend((0..self.p()).filter(|&i| !self.cone.gens[i].bounded));
+        let rows = &mut work.rows;
+        rows.clear();
+        rows.extend(0..self.nc);
+        let u = &mut work.u;
+        u.clear();
+        u.resize(free.len(), 0.0);
+        let residual = self.particular(free, rows, &mut work.qr, u, (&mut work.kt, &mut work.rhs));
         if residual > CONSISTENCY * (1.0 + self.rmax()) {
             return Err(RockingError::new(
                 ErrorKind::InconsistentState,
@@ -329,7 +374,7 @@ impl ConstrainedProblem {
                 ),
             ));
         }
-        for (&i, &v) in free.iter().zip(&u) {
+        for (&i, &v) in free.iter().zip(u.iter()) {
             self.start[i] = v;
         }
         Ok(())
@@ -337,28 +382,30 @@ impl ConstrainedProblem {
 
     /// Minimum-norm solution `u` (length `set.len()`) of `Ĉ_{rows,set} ŷ = r_rows`, and the
     /// residual of the equations the face cannot satisfy.
+    /// `kt` and `rhs` are scratch.
     pub fn particular(
         &self,
         set: &[usize],
         rows: &[usize],
         qr: &mut PivotedQr,
         u: &mut [f64],
+        (kt, rhs): (&mut Vec<f64>, &mut Vec<f64>),
     ) -> f64 {
         let (k, c, p) = (set.len(), rows.len(), self.p());
         if let Some(all) = self.all_factors(set, rows) {
             qr.clone_from(all);
         } else {
-            let mut kt = vec![0.0; k * c];
-            for (i, &s) in set.iter().enumerate() {
-                for (j, &row) in rows.iter().enumerate() {
-                    kt[i * c + j] = self.c[row * p + s];
-                }
+            kt.clear();
+            kt.reserve(k * c);
+            for &s in set {
+                kt.extend(rows.iter().map(|&row| self.c[row * p + s]));
             }
-            qr.factor(&mut kt, k, c, RANK_TOLERANCE);
+            qr.factor(kt, k, c, RANK_TOLERANCE);
         }
-        let rhs: Vec<f64> = rows.iter().map(|&row| self.r[row]).collect();
+        rhs.clear();
+        rhs.extend(rows.iter().map(|&row| self.r[row]));
         u.iter_mut().for_each(|x| *x = 0.0);
-        let residual = qr.solve_range(&rhs, u);
+        let residual = qr.solve_range(rhs, u);
         qr.apply_q(u);
         residual
     }
@@ -492,7 +539,15 @@ impl ConstrainedProblem {
     /// order, as `sum()` — `Â` is symmetric to the bit (built mirrored, each entry scaled by the
     /// product of its two scales), so row `s` of it holds column `s`, and the sums of all `j`
     /// run along rows.
-    pub fn gradients(&self, set: &[usize], y: &[f64], mu: &[f64], out: &mut Vec<f64>) {
+    /// `cm` is scratch.
+    pub fn gradients(
+        &self,
+        set: &[usize],
+        y: &[f64],
+        mu: &[f64],
+        out: &mut Vec<f64>,
+        cm: &mut Vec<f64>,
+    ) {
         let p = self.p();
         let mut ay = std::mem::take(out);
         ay.clear();
@@ -503,46 +558,16 @@ impl ConstrainedProblem {
                 *acc += a * ys;
             }
         }
-        let mut cm = vec![-0.0; p];
+        cm.clear();
+        cm.resize(p, -0.0);
         for (r, &m) in mu.iter().enumerate().take(self.nc) {
             for (acc, c) in cm.iter_mut().zip(&self.c[r * p..(r + 1) * p]) {
                 *acc += c * m;
             }
         }
-        for ((g, &b), &c) in ay.iter_mut().zip(&self.cone.b).zip(&cm) {
+        for ((g, &b), &c) in ay.iter_mut().zip(&self.cone.b).zip(cm.iter()) {
             *g = b - *g - c;
         }
         *out = ay;
     }
-}
-
-/// The two corners of each closed interface (generator index pairs), as [`ConeProblem::new`].
-pub(crate) fn groups_of(gens: &[Generator]) -> Vec<[usize; 2]> {
-    // Per group: its first two members and how many it has (a group of exactly two is kept),
-    // in one allocation rather than one list per group.
-    let mut members: Vec<([usize; 2], usize)> = Vec::new();
-    for (i, g) in gens.iter().enumerate() {
-        if let Some(k) = g.group {
-            if members.len() <= k {
-                members.resize(k + 1, ([0; 2], 0));
-            }
-            let (first, count) = &mut members[k];
-            if *count < 2 {
-                first[*count] = i;
-            }
-            *count += 1;
-        }
-    }
-    members
-        .into_iter()
-        .filter(|&(_, count)| count == 2)
-        .map(|(pair, _)| pair)
-        .collect()
-}
-
-/// Bounded generators outside any group.
-pub(crate) fn singles_of(gens: &[Generator]) -> Vec<usize> {
-    (0..gens.len())
-        .filter(|&i| gens[i].bounded && gens[i].group.is_none())
-        .collect()
 }

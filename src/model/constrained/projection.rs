@@ -18,7 +18,7 @@
 use crate::error::{ErrorKind, RockingError};
 use crate::model::cone::{ConeSolution, Solver, TIE_GAP};
 use crate::model::constrained::householder::PivotedQr;
-use crate::model::constrained::problem::{ConstrainedProblem, FaceWork};
+use crate::model::constrained::problem::{ConstrainedProblem, ConstrainedWork};
 
 /// Relative column norm under which a candidate column adds no rank.
 const RANK_TOLERANCE: f64 = 1e-10;
@@ -36,70 +36,133 @@ struct Relaxed {
     condition: f64,
 }
 
-/// Rows of `Ĉ` that stay independent on the allowed generators, or `None` if the right-hand side
-/// cannot be met with them (the branch is empty).
-fn allowed_rows(problem: &ConstrainedProblem, allowed: &[usize]) -> Option<Vec<usize>> {
-    let rows: Vec<usize> = (0..problem.nc).collect();
-    let mut qr = PivotedQr::default();
-    let mut u = vec![0.0; allowed.len()];
-    let residual = problem.particular(allowed, &rows, &mut qr, &mut u);
+/// Buffers of the solver, reused from one relaxed problem (and one constrained problem) to the
+/// next.
+#[derive(Default)]
+pub(crate) struct SolverWork {
+    /// The branches' forbidden flags waiting on the stack, and spare ones.
+    stack: Vec<Vec<bool>>,
+    spare_flags: Vec<Vec<bool>>,
+    /// Spare points of relaxed problems (one is the solution, the others come back here).
+    spare_points: Vec<Vec<f64>>,
+    /// A branch's allowed generators (flags and list), its independent rows, its working set
+    /// and flags, the blocked generators, the gradients and their `Ĉᵀ μ`.
+    allowed: Vec<bool>,
+    allowed_list: Vec<usize>,
+    rows: Vec<usize>,
+    set: Vec<usize>,
+    in_set: Vec<bool>,
+    blocked: Vec<bool>,
+    gradients: Vec<f64>,
+    cm: Vec<f64>,
+    /// [`complete_rank`]'s orthonormal basis (`c` entries per vector), the candidate column and
+    /// the best candidate's.
+    basis: Vec<f64>,
+    column: Vec<f64>,
+    best: Vec<f64>,
+}
+
+impl SolverWork {
+    /// Keeps the memory of a point for the next relaxed problems.
+    pub fn keep_point(&mut self, y: Vec<f64>) {
+        self.spare_points.push(y);
+    }
+}
+
+/// Rows of `Ĉ` that stay independent on the allowed generators into `keep`, or `false` if the
+/// right-hand side cannot be met with them (the branch is empty). `qr`, `u`, `kt`, `rhs` and
+/// `rows` are scratch.
+#[allow(clippy::too_many_arguments)]
+fn allowed_rows(
+    problem: &ConstrainedProblem,
+    allowed: &[usize],
+    keep: &mut Vec<usize>,
+    qr: &mut PivotedQr,
+    u: &mut Vec<f64>,
+    (kt, rhs): (&mut Vec<f64>, &mut Vec<f64>),
+    rows: &mut Vec<usize>,
+) -> bool {
+    rows.clear();
+    rows.extend(0..problem.nc);
+    u.clear();
+    u.resize(allowed.len(), 0.0);
+    let residual = problem.particular(allowed, rows, qr, u, (kt, rhs));
     let rmax = problem.r.iter().fold(0.0_f64, |a, v| a.max(v.abs()));
     if residual > 1e-9 * (1.0 + rmax) {
-        return None;
+        return false;
     }
-    let mut keep: Vec<usize> = qr.perm[..qr.rank].to_vec();
+    keep.clear();
+    keep.extend_from_slice(&qr.perm[..qr.rank]);
     keep.sort_unstable();
-    Some(keep)
+    true
+}
+
+/// `v ← v − (q · v) q` for each vector `q` (length `v.len()`) of the orthonormal `basis`, in
+/// order (modified Gram–Schmidt).
+fn reduce(basis: &[f64], v: &mut [f64]) {
+    for q in basis.chunks_exact(v.len()) {
+        let d: f64 = q.iter().zip(v.iter()).map(|(a, b)| a * b).sum();
+        v.iter_mut().zip(q).for_each(|(x, qi)| *x -= d * qi);
+    }
+}
+
+fn norm(v: &[f64]) -> f64 {
+    v.iter().map(|x| x * x).sum::<f64>().sqrt()
 }
 
 /// Adds bounded allowed generators (at zero) to `set` until its constraint columns reach the
 /// rank of the rows, choosing each time the column least explained by those already in.
+/// `basis`, `column` and `best_v` are scratch.
+#[allow(clippy::too_many_arguments)]
 fn complete_rank(
     problem: &ConstrainedProblem,
     set: &mut Vec<usize>,
     in_set: &mut [bool],
     allowed: &[bool],
     rows: &[usize],
+    basis: &mut Vec<f64>,
+    column: &mut Vec<f64>,
+    best_v: &mut Vec<f64>,
 ) {
     let p = problem.p();
     let c = rows.len();
-    let column = |j: usize| -> Vec<f64> { rows.iter().map(|&r| problem.c[r * p + j]).collect() };
-    // Orthonormal basis of the span of the set's columns (modified Gram–Schmidt).
-    let mut basis: Vec<Vec<f64>> = Vec::with_capacity(c);
-    let reduce = |basis: &[Vec<f64>], mut v: Vec<f64>| -> Vec<f64> {
-        for q in basis {
-            let d: f64 = q.iter().zip(&v).map(|(a, b)| a * b).sum();
-            v.iter_mut().zip(q).for_each(|(x, qi)| *x -= d * qi);
-        }
-        v
+    let column_of = |j: usize, out: &mut Vec<f64>| {
+        out.clear();
+        out.extend(rows.iter().map(|&r| problem.c[r * p + j]));
     };
-    let norm = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
+    // Orthonormal basis of the span of the set's columns (modified Gram–Schmidt), `c` entries
+    // per vector.
+    basis.clear();
+    let size = |basis: &Vec<f64>| basis.len().checked_div(c).unwrap_or(0);
     for &j in set.iter() {
-        if basis.len() == c {
+        if size(basis) == c {
             break;
         }
-        let v = reduce(&basis, column(j));
-        let n = norm(&v);
-        if n > RANK_TOLERANCE * norm(&column(j)).max(1e-300) {
-            basis.push(v.iter().map(|x| x / n).collect());
+        column_of(j, column);
+        let full = norm(column);
+        reduce(basis, column);
+        let n = norm(column);
+        if n > RANK_TOLERANCE * full.max(1e-300) {
+            basis.extend(column.iter().map(|x| x / n));
         }
     }
-    while basis.len() < c {
-        let mut best: Option<(usize, f64, Vec<f64>)> = None;
+    while size(basis) < c {
+        let mut best: Option<(usize, f64)> = None;
         for j in 0..p {
             if in_set[j] || !allowed[j] || !problem.cone.gens[j].bounded {
                 continue;
             }
-            let col = column(j);
-            let full = norm(&col);
-            let v = reduce(&basis, col);
-            let n = norm(&v);
+            column_of(j, column);
+            let full = norm(column);
+            reduce(basis, column);
+            let n = norm(column);
             if n > RANK_TOLERANCE * full && best.as_ref().map_or(true, |b| n > b.1) {
-                best = Some((j, n, v));
+                best = Some((j, n));
+                std::mem::swap(best_v, column);
             }
         }
-        let Some((j, n, v)) = best else { break };
-        basis.push(v.iter().map(|x| x / n).collect());
+        let Some((j, n)) = best else { break };
+        basis.extend(best_v.iter().map(|x| x / n));
         set.push(j);
         in_set[j] = true;
     }
@@ -110,23 +173,54 @@ fn complete_rank(
 fn relaxed(
     problem: &ConstrainedProblem,
     forbidden: &[bool],
-    ws: &mut FaceWork,
+    work: &mut ConstrainedWork,
 ) -> Result<Option<Relaxed>, RockingError> {
     let cone = &problem.cone;
     let p = problem.p();
-    let allowed: Vec<bool> = forbidden.iter().map(|f| !f).collect();
-    let allowed_list: Vec<usize> = (0..p).filter(|&i| allowed[i]).collect();
-    let Some(rows) = allowed_rows(problem, &allowed_list) else {
+    let SolverWork {
+        spare_points,
+        allowed,
+        allowed_list,
+        rows,
+        set,
+        in_set,
+        blocked,
+        gradients,
+        cm,
+        basis,
+        column,
+        best,
+        ..
+    } = &mut work.solver;
+    allowed.clear();
+    allowed.extend(forbidden.iter().map(|f| !f));
+    allowed_list.clear();
+    allowed_list.extend((0..p).filter(|&i| allowed[i]));
+    let scratch = (&mut work.kt, &mut work.rhs);
+    if !allowed_rows(
+        problem,
+        allowed_list,
+        rows,
+        &mut work.qr,
+        &mut work.u,
+        scratch,
+        &mut work.all,
+    ) {
         return Ok(None);
-    };
+    }
+    let rows = &rows[..];
+    let ws = &mut work.face;
     // Start: the free generators at the feasible start point, bounded ones at zero.
-    let mut y = problem.start.clone();
-    let mut set: Vec<usize> = (0..p).filter(|&i| !cone.gens[i].bounded).collect();
-    let mut in_set = vec![false; p];
+    let mut y = spare_points.pop().unwrap_or_default();
+    y.clone_from(&problem.start);
+    set.clear();
+    set.extend((0..p).filter(|&i| !cone.gens[i].bounded));
+    in_set.clear();
+    in_set.resize(p, false);
     set.iter().for_each(|&i| in_set[i] = true);
-    complete_rank(problem, &mut set, &mut in_set, &allowed, &rows);
-    let mut blocked = vec![false; p];
-    let mut gradients = Vec::with_capacity(p);
+    complete_rank(problem, set, in_set, allowed, rows, basis, column, best);
+    blocked.clear();
+    blocked.resize(p, false);
     let mut last_entered: Option<usize> = None;
     let max_iterations = 20 * p + 200;
     let mut zero_steps = 0usize;
@@ -140,7 +234,7 @@ fn relaxed(
             )));
         }
         info = problem
-            .solve_face(&set, &rows, ws)?
+            .solve_face(set, rows, ws)?
             .ok_or_else(|| not_converged("the working set lost feasibility (round-off)"))?;
         if info.rank < rows.len() {
             return Err(not_converged(
@@ -214,7 +308,7 @@ fn relaxed(
                 // The face is optimal: free the bounded generator of largest gradient.
                 let mut entering = None;
                 let mut best = cone.threshold;
-                problem.gradients(&set, &y, &ws.mu, &mut gradients);
+                problem.gradients(set, &y, &ws.mu, gradients, cm);
                 for j in 0..p {
                     if in_set[j] || !allowed[j] || !cone.gens[j].bounded || blocked[j] {
                         continue;
@@ -243,23 +337,45 @@ fn relaxed(
     }))
 }
 
-/// Projection with branch and bound on joints where both corners come out non-zero.
-pub(crate) fn solve(problem: &ConstrainedProblem) -> Result<ConeSolution, RockingError> {
+/// Projection with branch and bound on joints where both corners come out non-zero, in the
+/// buffers of `work`.
+pub(crate) fn solve_in(
+    problem: &ConstrainedProblem,
+    work: &mut ConstrainedWork,
+) -> Result<ConeSolution, RockingError> {
     let cone = &problem.cone;
     let p = problem.p();
-    let mut ws = FaceWork::default();
-    let mut stack: Vec<Vec<bool>> = vec![vec![false; p]];
+    let fresh = |spare: &mut Vec<Vec<bool>>| spare.pop().unwrap_or_default();
+    // Flags left on the stack by a branch that failed go back to the spares.
+    let mut stack = std::mem::take(&mut work.solver.stack);
+    while let Some(flags) = stack.pop() {
+        work.solver.spare_flags.push(flags);
+    }
+    let mut root = fresh(&mut work.solver.spare_flags);
+    root.clear();
+    root.resize(p, false);
+    stack.push(root);
     let mut best: Option<Relaxed> = None;
     let mut runner_up = f64::NAN;
     let (mut examined, mut admissible) = (0u64, 0u64);
     while let Some(forbidden) = stack.pop() {
         examined += 1;
-        let Some(relaxed) = relaxed(problem, &forbidden, &mut ws)? else {
+        let relaxed = match relaxed(problem, &forbidden, work) {
+            Ok(r) => r,
+            Err(e) => {
+                work.solver.stack = stack;
+                return Err(e);
+            }
+        };
+        let Some(relaxed) = relaxed else {
+            work.solver.spare_flags.push(forbidden);
             continue;
         };
         let f = relaxed.objective;
         if let Some(b) = &best {
             if f > b.objective + TIE_GAP * b.objective.abs() {
+                work.solver.spare_points.push(relaxed.y);
+                work.solver.spare_flags.push(forbidden);
                 continue;
             }
         }
@@ -277,18 +393,24 @@ pub(crate) fn solve(problem: &ConstrainedProblem) -> Result<ConeSolution, Rockin
                         if runner_up.is_nan() || -2.0 * f > runner_up {
                             runner_up = -2.0 * f;
                         }
+                        work.solver.spare_points.push(relaxed.y);
                     }
                     _ => {
                         if let Some(b) = &best {
                             runner_up = -2.0 * b.objective;
                         }
-                        best = Some(relaxed);
+                        if let Some(old) = best.replace(relaxed) {
+                            work.solver.spare_points.push(old.y);
+                        }
                     }
                 }
+                work.solver.spare_flags.push(forbidden);
             }
             Some([g0, g1]) => {
                 let (keep, drop) = if y[g0] >= y[g1] { (g0, g1) } else { (g1, g0) };
-                let mut other = forbidden.clone();
+                work.solver.spare_points.push(relaxed.y);
+                let mut other = fresh(&mut work.solver.spare_flags);
+                other.clone_from(&forbidden);
                 other[keep] = true;
                 let mut first = forbidden;
                 first[drop] = true;
@@ -297,10 +419,11 @@ pub(crate) fn solve(problem: &ConstrainedProblem) -> Result<ConeSolution, Rockin
             }
         }
     }
+    work.solver.stack = stack;
     let best = best.ok_or_else(|| {
         not_converged("no branch satisfies the constraints (the start point should have)")
     })?;
-    let (y_hat, objective, condition) = polish(problem, best, &mut ws)?;
+    let (y_hat, objective, condition) = polish(problem, best, work)?;
     let criterion = -2.0 * objective;
     let tie = !runner_up.is_nan() && runner_up >= criterion - TIE_GAP * criterion.abs();
     Ok(ConeSolution {
@@ -321,28 +444,31 @@ pub(crate) fn solve(problem: &ConstrainedProblem) -> Result<ConeSolution, Rockin
 fn polish(
     problem: &ConstrainedProblem,
     best: Relaxed,
-    ws: &mut FaceWork,
+    work: &mut ConstrainedWork,
 ) -> Result<(Vec<f64>, f64, f64), RockingError> {
     let cone = &problem.cone;
     let p = problem.p();
-    let rows: Vec<usize> = (0..problem.nc).collect();
+    let (rows, all, set) = (&mut work.rows, &mut work.all, &mut work.solver.set);
+    rows.clear();
+    rows.extend(0..problem.nc);
+    let ws = &mut work.face;
     let Relaxed {
         mut y,
         mut objective,
         mut condition,
     } = best;
     loop {
-        let all: Vec<usize> = (0..p).collect();
-        let largest = cone.largest_rate(&all, &y);
+        all.clear();
+        all.extend(0..p);
+        let largest = cone.largest_rate(all, &y);
         let weak =
             |i: usize| cone.gens[i].bounded && y[i] != 0.0 && !cone.admissible(i, y[i], largest);
         if !(0..p).any(weak) {
             return Ok((y, objective, condition));
         }
-        let set: Vec<usize> = (0..p)
-            .filter(|&i| !cone.gens[i].bounded || (y[i] != 0.0 && !weak(i)))
-            .collect();
-        let Some(info) = problem.solve_face(&set, &rows, ws)? else {
+        set.clear();
+        set.extend((0..p).filter(|&i| !cone.gens[i].bounded || (y[i] != 0.0 && !weak(i))));
+        let Some(info) = problem.solve_face(set, rows, ws)? else {
             // Dropping round-off openings cannot be done without breaking the closure: keep them.
             return Ok((y, objective, condition));
         };
