@@ -252,10 +252,10 @@ fn check_steps(spec: &SceneSpec) -> Result<(), SceneError> {
 
 /// [`build`] for a column, [`closed`] for an arch or a colonnade.
 pub fn build_any(spec: SceneSpec, base: &Path, name: &str) -> Result<AnyScene, SceneError> {
-    check_steps(&spec)?;
     if spec.arch.is_none() && spec.colonnade.is_none() {
         return build(spec, base, name).map(|s| AnyScene::Column(Box::new(s)));
     }
+    check_steps(&spec)?;
     let excitation = excitation(&spec.excitation, base)?;
     closed::build(spec, excitation, name).map(|s| AnyScene::Loop(Box::new(s)))
 }
