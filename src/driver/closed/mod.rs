@@ -127,6 +127,13 @@ pub fn simulate_loop(
     if !(options.duration >= 0.0 && options.duration.is_finite()) {
         return Err(bad("duration", options.duration));
     }
+    // As the column driver (`RunOptions::validate`): a step that would never end the run.
+    if options.duration / options.dt > 1e10 {
+        return Err(LoopError::Options(format!(
+            "dt = {:e}: more than 1e10 steps for the duration ({} s)",
+            options.dt, options.duration
+        )));
+    }
     if !(options.gravity > 0.0 && options.gravity.is_finite()) {
         return Err(bad("gravity", options.gravity));
     }

@@ -40,3 +40,32 @@ fn a_step_whose_opening_closes_at_once_is_rested_through() {
         }
     );
 }
+
+/// A step that would never end the run is refused, as the column driver refuses it (more than
+/// 1e10 steps for the duration; a fuzzer of scenes found an arch with `dt = 5e-324` running for
+/// ever); 1e10 steps exactly are allowed.
+#[test]
+fn a_step_too_small_for_the_duration_is_refused() {
+    let chain = VoussoirArch::semicircular(5.0, 0.75, 8).chain().unwrap();
+    let motion = FnMotion(|_| 0.0, 1.0);
+    for (dt, duration) in [(5e-324, 1.17), (1e-12, 1.0), (1e-10, 1.1)] {
+        let options = LoopOptions {
+            dt,
+            duration,
+            ..LoopOptions::default()
+        };
+        match simulate_loop(&chain, &motion, LoopState::at_rest(&chain), &options) {
+            Err(LoopError::Options(m)) => {
+                assert!(m.starts_with("dt = ") && m.contains("1e10 steps"), "{m}")
+            }
+            other => panic!("dt {dt}: {other:?}"),
+        }
+    }
+    let options = LoopOptions {
+        dt: 1e-10,
+        duration: 1.0,
+        quiet_after: Some(0.0),
+        ..LoopOptions::default()
+    };
+    assert!(simulate_loop(&chain, &motion, LoopState::at_rest(&chain), &options).is_ok());
+}
