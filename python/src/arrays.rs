@@ -47,6 +47,17 @@ pub fn floats(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<Floats> {
             "{name}: expected an array-like of numbers, got None"
         )));
     }
+    // numpy casts a complex array to float64 with a warning, dropping the imaginary parts:
+    // refuse it instead (a list of complex numbers is refused by numpy itself).
+    let kind = obj
+        .getattr("dtype")
+        .and_then(|d| d.getattr("kind"))
+        .and_then(|k| k.extract::<String>());
+    if kind.is_ok_and(|k| k == "c") {
+        return Err(PyTypeError::new_err(format!(
+            "{name}: complex values, expected real numbers"
+        )));
+    }
     let asarray = ASARRAY.import(py, "numpy", "asarray")?;
     let converted = asarray.call1((obj, "float64")).map_err(|e| {
         PyTypeError::new_err(format!(

@@ -2,6 +2,7 @@
 //! `check_configuration`. Inputs are copied, outputs are new arrays, the caller's arrays are
 //! never written (the library's functions work in place on the copies).
 
+use pyo3::exceptions::{PyOverflowError, PyTypeError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use rocking::model::configuration::{self, Status};
@@ -197,7 +198,7 @@ pub fn impact_model<'py>(
     mass: &Bound<'py, PyAny>,
     status: &Bound<'py, PyAny>,
     velocity: &Bound<'py, PyAny>,
-    closing_interface: i64,
+    closing_interface: &Bound<'py, PyAny>,
     n_impacts: i64,
     solver: &str,
     tolerance: f64,
@@ -209,12 +210,23 @@ pub fn impact_model<'py>(
     let mass = matrix(mass, "mass", 2 * n, 2 * n)?;
     let mut v = vector(velocity, "velocity", 2 * n)?;
     let mut st = decode(&raw)?;
-    let closing = usize::try_from(closing_interface).map_err(|_| {
+    // An integer (numpy's too) out of range, even beyond 64 bits, is the model's error; what is
+    // not an integer is a TypeError.
+    let out_of_range = || {
         error(
             ErrorKind::InvalidClosingInterface,
             format!("closing_interface = {closing_interface}, expected 0..{n}"),
         )
-    })?;
+    };
+    let closing = match closing_interface.extract::<i64>() {
+        Ok(c) => usize::try_from(c).map_err(|_| out_of_range())?,
+        Err(e) if e.is_instance_of::<PyOverflowError>(py) => return Err(out_of_range()),
+        Err(e) => {
+            return Err(PyTypeError::new_err(format!(
+                "closing_interface: expected an integer ({e})"
+            )))
+        }
+    };
     let report = rocking::impact_model(&mass, &mut st, &mut v, closing, &opts).py()?;
     Ok((
         new_statuses(py, encode(&st)).into_any(),

@@ -53,6 +53,10 @@ IMPACT_CASES = [
     ("status 0.5", lambda M: dict(status=[0.5, 1]), "ROCKING_ERR_INVALID_STATUS", "status[0] = 0.5"),
     ("closing interface out of range", lambda M: dict(closing_interface=5), "ROCKING_ERR_INVALID_CLOSING_INTERFACE", "closing_interface = 5"),
     ("closing interface negative", lambda M: dict(closing_interface=-1), "ROCKING_ERR_INVALID_CLOSING_INTERFACE", "closing_interface = -1"),
+    ("closing interface beyond 64 bits", lambda M: dict(closing_interface=2**70), "ROCKING_ERR_INVALID_CLOSING_INTERFACE",
+     f"closing_interface = {2**70}"),
+    ("closing interface numpy", lambda M: dict(closing_interface=np.int64(7)), "ROCKING_ERR_INVALID_CLOSING_INTERFACE",
+     "closing_interface = 7"),
     ("closing interface closed", lambda M: dict(closing_interface=0), "ROCKING_ERR_INVALID_CLOSING_INTERFACE", "interface 0 is closed"),
     ("velocity on a closed DOF", lambda M: dict(velocity=np.array([0.2, 0, 0, -1.0])), "ROCKING_ERR_VELOCITY_ON_CLOSED_DOF", "velocity[0]"),
     ("n_impacts = 0", lambda M: dict(n_impacts=0), "ROCKING_ERR_INVALID_OPTIONS", "n_impacts = 0"),
@@ -169,7 +173,10 @@ def test_reduce_errors():
 
 def test_not_an_array_is_a_type_error(two_blocks):
     M, _ = two_blocks
-    for bad in [dict(velocity=["a", "b", "c", "d"]), dict(mass=[[1, 2], [3]]), dict(status=None)]:
+    for bad in [dict(velocity=["a", "b", "c", "d"]), dict(mass=[[1, 2], [3]]), dict(status=None),
+                dict(closing_interface=1.0), dict(closing_interface="1"),
+                # numpy would drop the imaginary parts with a warning
+                dict(mass=M.astype(complex)), dict(velocity=np.array([0, 0, 0, -1.0 + 0j]))]:
         with pytest.raises(TypeError) as info:
             rocking.impact_model(**impact_args(M, **bad))
         assert next(iter(bad)) in str(info.value)
