@@ -13,6 +13,7 @@ import os
 import numpy as np
 
 from . import _rocking
+from ._errors import error as _error
 
 _SIMULATION_DOC = """
     Simulations (as the CLI's options): ``impacts`` consecutive impacts per closing (1: Housner;
@@ -181,6 +182,9 @@ def _numbers(**args):
         kind = numbers.Integral if integral else numbers.Real
         if isinstance(v, bool) or not isinstance(v, kind):
             raise TypeError(f"{name}: expected {'an integer' if integral else 'a number'}, got {type(v).__name__}")
+        if integral and not -2**63 <= v < 2**63:
+            # The extension would raise Python's OverflowError: the package's one exception instead.
+            raise _error(f"{name} = {v}: out of range")
 
 
 def _simulation(impacts, dt_factor, tail, hermite, rk4, full_runs):

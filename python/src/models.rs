@@ -139,6 +139,19 @@ fn py_float(x: f64) -> String {
 }
 
 /// The options of a call, checked (`InvalidOptions` names the argument).
+/// An integer argument without a default (numpy's too): `None` for one beyond 64 bits (for the
+/// caller's range error: the model's, not Python's `OverflowError`); not an integer, a
+/// TypeError naming it.
+fn integer(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<Option<i64>> {
+    match obj.extract::<i64>() {
+        Ok(v) => Ok(Some(v)),
+        Err(e) if e.is_instance_of::<PyOverflowError>(obj.py()) => Ok(None),
+        Err(e) => Err(PyTypeError::new_err(format!(
+            "{name}: expected an integer ({e})"
+        ))),
+    }
+}
+
 fn options(n_impacts: i64, solver: &str, tolerance: f64) -> PyResult<ModelOptions> {
     let solver = match solver {
         "auto" => Solver::Auto,
@@ -218,15 +231,9 @@ pub fn impact_model<'py>(
             format!("closing_interface = {closing_interface}, expected 0..{n}"),
         )
     };
-    let closing = match closing_interface.extract::<i64>() {
-        Ok(c) => usize::try_from(c).map_err(|_| out_of_range())?,
-        Err(e) if e.is_instance_of::<PyOverflowError>(py) => return Err(out_of_range()),
-        Err(e) => {
-            return Err(PyTypeError::new_err(format!(
-                "closing_interface: expected an integer ({e})"
-            )))
-        }
-    };
+    let closing = integer(closing_interface, "closing_interface")?
+        .and_then(|c| usize::try_from(c).ok())
+        .ok_or_else(out_of_range)?;
     let report = rocking::impact_model(&mass, &mut st, &mut v, closing, &opts).py()?;
     Ok((
         new_statuses(py, encode(&st)).into_any(),

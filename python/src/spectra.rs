@@ -71,7 +71,10 @@ impl Simulation {
 /// A count (`int`, ≥ 1) or explicit values (an array-like).
 fn count_or_values(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<Result<usize, Vec<f64>>> {
     if obj.is_instance_of::<PyInt>() {
-        let n: i64 = obj.extract()?;
+        // An int beyond 64 bits: the package's one exception, not Python's OverflowError.
+        let n: i64 = obj
+            .extract()
+            .map_err(|_| value_error(format!("{name} = {obj}: out of range")))?;
         return usize::try_from(n)
             .ok()
             .filter(|&n| n >= 1)

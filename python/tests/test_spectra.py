@@ -145,6 +145,8 @@ def test_design_errors_name_the_argument():
         (dict(level_max=float("nan")), "level_max = NaN"),
         (dict(size_min=0.0), "size_min = 0.0"),
         (dict(size_max=float("inf")), "size_max = inf"),
+        (dict(blocks=2**70), f"blocks = {2**70}: out of range"),
+        (dict(levels=2**64), f"levels = {2**64}: out of range"),
     ],
 )
 def test_oas_errors_name_the_argument(root, args, field):
