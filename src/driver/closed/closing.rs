@@ -231,10 +231,7 @@ impl Runner<'_> {
             acc.clear();
             acc.resize(open.len(), 0.0);
             if flight > 0.0 {
-                x.clear();
-                x.extend(open.iter().map(|&d| s.phi[d]));
-                v.clear();
-                v.extend(open.iter().map(|&d| s.rates[d]));
+                s.open_values_into(open, x, v);
                 let ag = self.motion.acceleration(s.time);
                 if !self.equations.accelerations(open, ag, x, v, acc) {
                     return Err(LoopError::Singular(s.time));

@@ -398,10 +398,7 @@ impl<'a> Runner<'a> {
                 None => self.ground_power(&s, &mut pose),
             };
             s.open_dofs_into(&mut open);
-            x.clear();
-            x.extend(open.iter().map(|&d| s.phi[d]));
-            v.clear();
-            v.extend(open.iter().map(|&d| s.rates[d]));
+            s.open_values_into(&open, &mut x, &mut v);
             x1.clear();
             v1.clear();
             x1.resize(open.len(), 0.0);

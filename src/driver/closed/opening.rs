@@ -22,10 +22,7 @@ impl Runner<'_> {
         let screened = moving && self.options.screen != Screen::Off && {
             let Work { open, x, v, .. } = &mut self.work;
             s.open_dofs_into(open);
-            x.clear();
-            x.extend(open.iter().map(|&d| s.phi[d]));
-            v.clear();
-            v.extend(open.iter().map(|&d| s.rates[d]));
+            s.open_values_into(open, x, v);
             let holds = self
                 .equations
                 .current_holds(&s.statuses, open, ag, x, v, SCREEN_MARGIN);

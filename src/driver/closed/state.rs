@@ -130,6 +130,15 @@ impl LoopState {
         crate::model::configuration::open_dofs(&self.statuses)
     }
 
+    /// The angles and rates of the DOFs `open` (the reduced vectors of the integrators) into
+    /// `x` and `v` (cleared first), reusing their memory.
+    pub(crate) fn open_values_into(&self, open: &[usize], x: &mut Vec<f64>, v: &mut Vec<f64>) {
+        x.clear();
+        x.extend(open.iter().map(|&d| self.phi[d]));
+        v.clear();
+        v.extend(open.iter().map(|&d| self.rates[d]));
+    }
+
     /// [`LoopState::open_dofs`] into `out` (cleared first), reusing its memory.
     pub fn open_dofs_into(&self, out: &mut Vec<usize>) {
         let n = self.statuses.len();
