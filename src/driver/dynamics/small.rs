@@ -11,7 +11,7 @@
 
 use crate::driver::chain::Check;
 use crate::model::cholesky;
-use crate::model::column::Column;
+use crate::model::column::{BlockMap, Column};
 use crate::model::configuration::Status;
 
 /// Most DOFs of a small column (`2N`, `N ≤ 4`).
@@ -166,41 +166,17 @@ impl<const N: usize> Small<N> {
             centre: [[0.0; 2]; N],
             spread: [0.0; N],
         };
-        let mut alpha = 0.0_f64;
-        let (mut ca, mut sa) = (1.0_f64, 0.0_f64);
-        let mut t = [0.0_f64, 0.0];
-        let map = |p: [f64; 2], ca: f64, sa: f64, t: [f64; 2]| {
-            [ca * p[0] - sa * p[1] + t[0], sa * p[0] + ca * p[1] + t[1]]
-        };
+        let mut map = BlockMap::GROUND;
         for k in 0..N {
             let (b, y) = (self.b[k], self.y[k]);
-            let right = map([b, y], ca, sa, t);
-            let left = map([-b, y], ca, sa, t);
-            let (theta, pref) = if phi[k] != 0.0 {
-                (phi[k], [b, y])
-            } else {
-                (phi[N + k], [-b, y])
-            };
-            if theta != 0.0 {
-                let (st, ct) = theta.sin_cos();
-                let d = [
-                    pref[0] - (ct * pref[0] - st * pref[1]),
-                    pref[1] - (st * pref[0] + ct * pref[1]),
-                ];
-                t = [ca * d[0] - sa * d[1] + t[0], sa * d[0] + ca * d[1] + t[1]];
-                if alpha == 0.0 {
-                    alpha = theta;
-                    (sa, ca) = (st, ct);
-                } else {
-                    alpha += theta;
-                    (sa, ca) = alpha.sin_cos();
-                }
-            }
+            let right = map.apply([b, y]);
+            let left = map.apply([-b, y]);
+            map.turn(phi[k], phi[N + k], b, y);
             p.right[k] = right;
             p.left[k] = left;
-            p.centres[k] = map([0.0, self.yc[k]], ca, sa, t);
-            p.angles[k] = alpha;
-            p.sin_cos[k] = (sa, ca);
+            p.centres[k] = map.apply([0.0, self.yc[k]]);
+            p.angles[k] = map.alpha;
+            p.sin_cos[k] = map.sin_cos;
         }
         let (mut s1, mut s2) = ([0.0, 0.0], 0.0);
         for j in (0..N).rev() {

@@ -19,6 +19,7 @@ mod mass_matrix;
 mod pose;
 mod reduction;
 
+pub(crate) use pose::BlockMap;
 pub use pose::Pose;
 pub use reduction::{reduce, three_mass_points, transformation_matrix};
 

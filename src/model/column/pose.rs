@@ -24,49 +24,78 @@ impl Column {
         let block_sin_cos = &mut pose.block_sin_cos[..n];
         let (half_contact, base_height) = (&self.half_contact[..n], &self.base_height[..n]);
         let (blocks, phi) = (&self.blocks[..n], &phi[..2 * n]);
-        // Current rigid map of the block below: x ↦ R(alpha) x + t (the ground is the identity).
-        let mut alpha = 0.0_f64;
-        let (mut ca, mut sa) = (1.0_f64, 0.0_f64);
-        let mut t = [0.0_f64, 0.0];
+        // Current rigid map of the block below (the ground is the identity).
+        let mut map = BlockMap::GROUND;
         for k in 0..n {
-            let b = half_contact[k];
-            let y = base_height[k];
-            let map = |p: [f64; 2], ca: f64, sa: f64, t: [f64; 2]| {
-                [ca * p[0] - sa * p[1] + t[0], sa * p[0] + ca * p[1] + t[1]]
-            };
-            let right = map([b, y], ca, sa, t);
-            let left = map([-b, y], ca, sa, t);
-            let (theta, pref) = if phi[k] != 0.0 {
-                (phi[k], [b, y])
-            } else {
-                (phi[n + k], [-b, y])
-            };
-            if theta != 0.0 {
-                // T_k(r) = R_{α+θ} r + R_α (p − R_θ p) + t
-                let (st, ct) = theta.sin_cos();
-                let d = [
-                    pref[0] - (ct * pref[0] - st * pref[1]),
-                    pref[1] - (st * pref[0] + ct * pref[1]),
-                ];
-                t = [ca * d[0] - sa * d[1] + t[0], sa * d[0] + ca * d[1] + t[1]];
-                if alpha == 0.0 {
-                    // The first turned interface: `0 + θ` is `θ` exactly, and so are its sine
-                    // and cosine (one `sin_cos` fewer).
-                    alpha = theta;
-                    (sa, ca) = (st, ct);
-                } else {
-                    alpha += theta;
-                    (sa, ca) = alpha.sin_cos();
-                }
-            }
-            let centre = map([0.0, y + 0.5 * blocks[k].height], ca, sa, t);
+            let (b, y) = (half_contact[k], base_height[k]);
+            let right = map.apply([b, y]);
+            let left = map.apply([-b, y]);
+            map.turn(phi[k], phi[n + k], b, y);
+            let centre = map.apply([0.0, y + 0.5 * blocks[k].height]);
             right_pivots[k] = right;
             left_pivots[k] = left;
             centres[k] = centre;
-            block_angles[k] = alpha;
-            block_sin_cos[k] = (sa, ca);
+            block_angles[k] = map.alpha;
+            block_sin_cos[k] = map.sin_cos;
         }
         pose.update_sums(self);
+    }
+}
+
+/// The rigid map `x ↦ R(α) x + t` of a block, advanced from the ground up interface by
+/// interface: the one arithmetic of [`Column::pose_into`] and of the driver's fixed-size poses.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct BlockMap {
+    /// Absolute rotation `α`.
+    pub alpha: f64,
+    /// `α.sin_cos()`, bit for bit.
+    pub sin_cos: (f64, f64),
+    t: [f64; 2],
+}
+
+impl BlockMap {
+    /// The ground's map, the identity.
+    pub const GROUND: BlockMap = BlockMap {
+        alpha: 0.0,
+        sin_cos: (0.0, 1.0),
+        t: [0.0, 0.0],
+    };
+
+    /// Image of a point of the block's reference geometry.
+    #[inline(always)]
+    pub fn apply(&self, p: [f64; 2]) -> [f64; 2] {
+        let ((sa, ca), t) = (self.sin_cos, self.t);
+        [ca * p[0] - sa * p[1] + t[0], sa * p[0] + ca * p[1] + t[1]]
+    }
+
+    /// From this block's map to the map of the block above an interface whose corners are
+    /// `(±b, y)` and whose DOF angles are `phi_right` (`phĭ`) and `phi_left` (`phî`): a turn by the
+    /// non-zero one about its corner (right if `phĭ ≠ 0`), `T(r) = R_{α+θ} r + R_α (p − R_θ p) + t`.
+    #[inline(always)]
+    pub fn turn(&mut self, phi_right: f64, phi_left: f64, b: f64, y: f64) {
+        let (theta, pref) = if phi_right != 0.0 {
+            (phi_right, [b, y])
+        } else {
+            (phi_left, [-b, y])
+        };
+        if theta == 0.0 {
+            return;
+        }
+        let (st, ct) = theta.sin_cos();
+        let d = [
+            pref[0] - (ct * pref[0] - st * pref[1]),
+            pref[1] - (st * pref[0] + ct * pref[1]),
+        ];
+        self.t = self.apply(d);
+        if self.alpha == 0.0 {
+            // The first turned interface: `0 + θ` is `θ` exactly, and so are its sine and cosine
+            // (one `sin_cos` fewer).
+            self.alpha = theta;
+            self.sin_cos = (st, ct);
+        } else {
+            self.alpha += theta;
+            self.sin_cos = self.alpha.sin_cos();
+        }
     }
 }
 
