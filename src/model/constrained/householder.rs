@@ -58,8 +58,8 @@ impl PivotedQr {
         }
     }
 
-    /// [`PivotedQr::factor`] for any number of columns.
-    fn factor_any(&mut self, kt: &mut [f64], k: usize, c: usize, rank_tolerance: f64) {
+    /// Empties the factorisation for `k` rows and `c` columns.
+    fn reset(&mut self, k: usize, c: usize) {
         self.k = k;
         self.c = c;
         self.rank = 0;
@@ -70,6 +70,42 @@ impl PivotedQr {
         self.beta.clear();
         self.r.clear();
         self.r.resize(c * c, 0.0);
+    }
+
+    /// Step `s` of the factorisation after its pivot `best` (remaining squared norm
+    /// `best_norm`): the pivot column swapped into place, its reflector stored (`vecs`, `beta`)
+    /// and column `s` reduced to `−sign(x_s) ‖x‖ e_s`. Returns `β`.
+    #[inline(always)]
+    fn pivot_and_reduce(&mut self, kt: &mut [f64], s: usize, best: usize, best_norm: f64) -> f64 {
+        let (k, c) = (self.k, self.c);
+        if best != s {
+            for i in 0..k {
+                kt.swap(i * c + s, i * c + best);
+            }
+            self.perm.swap(s, best);
+        }
+        // Reflector that maps column s (rows s..k) onto −sign(x_s) ‖x‖ e_s.
+        let norm = best_norm.sqrt();
+        let x0 = kt[s * c + s];
+        let alpha = if x0 >= 0.0 { -norm } else { norm };
+        let v = &mut self.vecs[s * k..s * k + (k - s)];
+        v[0] = x0 - alpha;
+        for i in s + 1..k {
+            v[i - s] = kt[i * c + s];
+        }
+        let vnorm2: f64 = v.iter().map(|x| x * x).sum();
+        let beta = if vnorm2 > 0.0 { 2.0 / vnorm2 } else { 0.0 };
+        self.beta.push(beta);
+        kt[s * c + s] = alpha;
+        for i in s + 1..k {
+            kt[i * c + s] = 0.0;
+        }
+        beta
+    }
+
+    /// [`PivotedQr::factor`] for any number of columns.
+    fn factor_any(&mut self, kt: &mut [f64], k: usize, c: usize, rank_tolerance: f64) {
+        self.reset(k, c);
         let col_norm2 =
             |kt: &[f64], j: usize, from: usize| (from..k).map(|i| kt[i * c + j].powi(2)).sum();
         let largest = (0..c).fold(0.0_f64, |a, j| a.max(col_norm2(kt, j, 0)));
@@ -87,28 +123,8 @@ impl PivotedQr {
             if best_norm.is_nan() || best_norm <= floor || best_norm == 0.0 {
                 break;
             }
-            if best != s {
-                for i in 0..k {
-                    kt.swap(i * c + s, i * c + best);
-                }
-                self.perm.swap(s, best);
-            }
-            // Reflector that maps column s (rows s..k) onto −sign(x_s) ‖x‖ e_s.
-            let norm = best_norm.sqrt();
-            let x0 = kt[s * c + s];
-            let alpha = if x0 >= 0.0 { -norm } else { norm };
-            let v = &mut self.vecs[s * k..s * k + (k - s)];
-            v[0] = x0 - alpha;
-            for i in s + 1..k {
-                v[i - s] = kt[i * c + s];
-            }
-            let vnorm2: f64 = v.iter().map(|x| x * x).sum();
-            let beta = if vnorm2 > 0.0 { 2.0 / vnorm2 } else { 0.0 };
-            self.beta.push(beta);
-            kt[s * c + s] = alpha;
-            for i in s + 1..k {
-                kt[i * c + s] = 0.0;
-            }
+            let beta = self.pivot_and_reduce(kt, s, best, best_norm);
+            let v = &self.vecs[s * k..s * k + (k - s)];
             for j in s + 1..c {
                 let dot: f64 = (s..k).map(|i| v[i - s] * kt[i * c + j]).sum();
                 let f = beta * dot;
@@ -130,16 +146,7 @@ impl PivotedQr {
     /// the sums of columns not needed are computed and never read).
     fn factor_fixed<const C: usize>(&mut self, kt: &mut [f64], k: usize, rank_tolerance: f64) {
         let c = C;
-        self.k = k;
-        self.c = c;
-        self.rank = 0;
-        self.perm.clear();
-        self.perm.extend(0..c);
-        self.vecs.clear();
-        self.vecs.resize(k * c.min(k), 0.0);
-        self.beta.clear();
-        self.r.clear();
-        self.r.resize(c * c, 0.0);
+        self.reset(k, c);
         let col_norms2 = |kt: &[f64], from: usize| -> [f64; C] {
             let mut acc = [-0.0_f64; C];
             for row in kt[from * C..k * C].chunks_exact(C) {
@@ -164,28 +171,8 @@ impl PivotedQr {
             if best_norm.is_nan() || best_norm <= floor || best_norm == 0.0 {
                 break;
             }
-            if best != s {
-                for i in 0..k {
-                    kt.swap(i * c + s, i * c + best);
-                }
-                self.perm.swap(s, best);
-            }
-            // Reflector that maps column s (rows s..k) onto −sign(x_s) ‖x‖ e_s.
-            let norm = best_norm.sqrt();
-            let x0 = kt[s * c + s];
-            let alpha = if x0 >= 0.0 { -norm } else { norm };
-            let v = &mut self.vecs[s * k..s * k + (k - s)];
-            v[0] = x0 - alpha;
-            for i in s + 1..k {
-                v[i - s] = kt[i * c + s];
-            }
-            let vnorm2: f64 = v.iter().map(|x| x * x).sum();
-            let beta = if vnorm2 > 0.0 { 2.0 / vnorm2 } else { 0.0 };
-            self.beta.push(beta);
-            kt[s * c + s] = alpha;
-            for i in s + 1..k {
-                kt[i * c + s] = 0.0;
-            }
+            let beta = self.pivot_and_reduce(kt, s, best, best_norm);
+            let v = &self.vecs[s * k..s * k + (k - s)];
             // The columns after s: `f_j = β (v · kt_j)`, then `kt_j −= f_j v`.
             let mut f = [-0.0_f64; C];
             for (row, &vi) in kt[s * C..k * C].chunks_exact(C).zip(v.iter()) {
