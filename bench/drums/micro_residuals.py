@@ -4,7 +4,7 @@ residual exceeds 1e-3: each is rerun as a `rocking simulate` scene (the bench's 
 drums, `impacts: 2`, dt 1 ms, to the end of the record, sliding and flight allowed) and its
 absolute residual is split into its terms and expressed as a height, residual / weight.
 
-    micro_residuals.py SUITE.csv ROCKING_BINARY RECORDS_DIR WORK_DIR [--consistent]
+    micro_residuals.py SUITE.csv ROCKING_BINARY RECORDS_DIR WORK_DIR [--consistent] [--energy-tol TOL]
 
 e.g. `bench/drums/micro_residuals.py bench/drums/consistent_sweeps_suite.csv
 target/release/rocking ../shared/records/fema-p695/farfield /tmp/micro --consistent`
@@ -28,6 +28,8 @@ def main():
     ap.add_argument("records")
     ap.add_argument("work")
     ap.add_argument("--consistent", action="store_true", help="energy_consistent scenes")
+    ap.add_argument("--energy-tol", type=float, default=None,
+                    help="the scheme's error control (energy_tolerance) in the scenes")
     a = ap.parse_args()
     os.makedirs(a.work, exist_ok=True)
     rows = [r for r in csv.DictReader(open(a.suite))
@@ -46,12 +48,16 @@ def main():
             "friction": float(r["mu"]), "on_sliding": "slide", "on_tension": "fly",
             "scheme": "moreau", "energy_consistent": a.consistent,
         }
+        if a.energy_tol is not None:
+            scene["energy_tolerance"] = a.energy_tol
         path = os.path.join(a.work, f"scene{i}.json")
         with open(path, "w") as f:
             json.dump(scene, f)
         outdir = os.path.join(a.work, f"out{i}")
+        before = os.times()
         subprocess.run([a.rocking, "simulate", path, "--out", outdir], check=True,
                        capture_output=True)
+        after = os.times()
         with open(os.path.join(outdir, "summary.json")) as f:
             e = json.load(f)["energy"]
         out.append({
@@ -59,6 +65,8 @@ def main():
             "projection_share": abs(e["projection"]) / abs(e["residual"]) if e["residual"] else 1.0,
             "same": f"{e['relative_residual']:.3e}" == f"{float(r['energy_error']):.3e}",
             "scale": abs(e["residual"] / e["relative_residual"]) if e["relative_residual"] else 0.0,
+            "relative": abs(e["relative_residual"]),
+            "cpu": after.children_user - before.children_user,
         })
     if not out:
         print("no run of the CSV barely rocks with a relative residual above 1e-3")
@@ -72,6 +80,9 @@ def main():
     print(f"|residual| (J):            median {med('residual'):.2e}, largest {big('residual'):.2e}")
     print(f"|residual| / weight (m):   median {med('height'):.2e}, largest {big('height'):.2e}")
     print(f"projection work / residual: smallest {min(x['projection_share'] for x in out):.6f}")
+    print(f"relative residual of these scenes: median {med('relative'):.2e}, largest "
+          f"{big('relative'):.2e}, above 1e-3: {sum(x['relative'] > 1e-3 for x in out)}")
+    print(f"user CPU of the {len(out)} simulations: {sum(x['cpu'] for x in out):.2f} s")
 
 
 if __name__ == "__main__":
