@@ -7,8 +7,9 @@ the records (`summary FILES`). A collapse whose run peaked below 0.01 rad is fla
 the Hermite location did); `rows` gives the smallest peak of a boundary collapse to show there is
 none. `steps [--factors 0.999,1.001] FILES` sets the records of FILES (the default step) beside
 their runs with `--dt-factor F`, read from DIR/dt/oas-RECORD-xF.json (DIR that of each file): one
-row per record (ratio, verdict and boundary points below the rule at each step, the largest
-relative change of the ratio against the default step), then the totals per step and the flips."""
+row per record (ratio, verdict and boundary points below the rule at each step, the relative
+change of the ratio and the boundary points moved against the default step), then the totals per
+step and the flips."""
 import json
 import statistics
 import sys
@@ -113,18 +114,17 @@ def steps(args):
         factors, args = args[1].split(','), args[2:]
     names = [f'×{f}' for f in factors[:1]] + ['×1'] + [f'×{f}' for f in factors[1:]]
     sets = [step_set(p, factors) for p in args]
-    print(f"| record | single-block t₁ (s) | ratio {' / '.join(names)} | conservative {' / '.join(names)} | boundary points below the rule {' / '.join(names)} | verdict flips | largest change of the ratio against ×1 | boundary points moved (of {len(sets[0][0][0]['levels'])}, most at one step) |")
+    print(f"| record | single-block t₁ (s) | ratio {' / '.join(names)} | conservative {' / '.join(names)} | boundary points below the rule {' / '.join(names)} | verdict flips | change of the ratio against ×1 {' / '.join(f'×{f}' for f in factors)} | boundary points moved (of {len(sets[0][0][0]['levels'])}) {' / '.join(f'×{f}' for f in factors)} |")
     print('|---|---:|---:|---|---:|---|---:|---:|')
     for s in sets:
         ds = [x[0] for x in s]
         r1 = ratio_of(ds[0])
         ch = [rel(ratio_of(d), r1) for d in ds[1:]]
-        ch = max(ch, key=lambda x: -1 if x is None else x)
         flip = 'yes' if len({d['check']['conservative'] for d in ds}) > 1 else ''
-        moved = max(sum(a['size'] != b['size'] for a, b in zip(ds[0]['levels'], d['levels'])) for d in ds[1:])
+        moved = [sum(a['size'] != b['size'] for a, b in zip(ds[0]['levels'], d['levels'])) for d in ds[1:]]
         print(f"| {ds[0]['record']} | {ds[0]['check']['t1']:.4f} | {' / '.join(fmt(ratio_of(d), '{:.2f}') for d in shown(ds))} | "
               f"{' / '.join(verdict(d) for d in shown(ds))} | {' / '.join(str(d['check']['violations']) for d in shown(ds))} | {flip} | "
-              f"{fmt(None if ch is None else 100 * ch, '{:.1f} %')} | {moved} |")
+              f"{' / '.join(fmt(None if c is None else 100 * c, '{:.1f} %') for c in ch)} | {' / '.join(map(str, moved))} |")
     print()
     n = len(sets)
     for i, name in enumerate(['×1'] + [f'×{f}' for f in factors]):
