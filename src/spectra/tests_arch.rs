@@ -154,7 +154,7 @@ fn arch_oas_on_a_small_grid() {
     }
 }
 
-/// The cost of single runs on the bundled record (R = 5 m) for 8 and 20 voussoirs (docs/arch-spectra.md): `cargo test --release --lib arch_run_cost -- --ignored --nocapture`.
+/// The cost of single runs on the bundled record (R = 5 m) for 8 and 20 voussoirs (docs/arch-performance.md, "Cost of single runs"): `cargo test --release --lib arch_run_cost -- --ignored --nocapture`.
 #[test]
 #[ignore]
 fn arch_run_cost() {
@@ -181,7 +181,7 @@ fn arch_run_cost() {
 }
 
 /// Level 3 on the bundled record (R = 5 m, 8 voussoirs) failed at once with "no joint is flagged
-/// as closing" under the loop driver with linear location (046b835, docs/arch-spectra.md "Cost"): a
+/// as closing" under the loop driver with linear location (046b835, docs/arch-performance.md "Cost of single runs"): a
 /// crossing located at the step-halving floor whose DOF moved away from closure at the
 /// interpolated instant was left unflagged, so the impact model got an empty closing set. The
 /// Hermite location flags every located zero (a rate moving away there is the interpolant's
