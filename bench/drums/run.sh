@@ -3,6 +3,7 @@
 # time, then its figures:  bench/drums/run.sh ROCKING_BINARY OUT_DIR [RECORDS_DIR]
 # Every run is deterministic; the shards' union is the suite whatever their order.
 # BENCH_FLAGS passes options of the scheme, e.g. BENCH_FLAGS=--consistent (consistent_sweeps_suite.csv;
+# BENCH_FLAGS="--consistent --energy-tol 1e-6" is consistent_control_suite.csv, docs/energy-every-run.md;
 # consistent_gap_suite.csv is the option before the sweeps of its cycling problems;
 # consistent_suite.csv is the option before its impact gap tolerance).
 set -e
