@@ -20,7 +20,7 @@
 //! tolerance (`1e-9` of the drum size) of its face was taken into the index set there and stopped
 //! by the velocity law at that gap, then pulled onto the face by the projection: the weight times
 //! a gap set by the tolerance, not by the step, so halving did not reduce it (nanoradian rocking:
-//! 2e-5 J a landing against runs of 1e-4 J; docs/energy-control.md, "Nanoradian rocking").
+//! 2e-5 J a landing against runs of 1e-4 J; docs/nanoradian-rocking.md).
 //! Moreau–Jean's index set is the predicted one (Acary & Brogliato 2008 §10.1) and the
 //! projection (Acary 2013) is there for the `O(h²)` drift of persistent contacts; a landing is
 //! an event, located as the fast ones are.
