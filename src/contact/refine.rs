@@ -15,8 +15,8 @@
 //!
 //! With `energy_consistent`, a retry (every sub-step below the grid step) also locates every
 //! landing of an open end whatever its speed, and counts an end as touching only within the
-//! projection's tolerance instead of the contact tolerance ([`Stepper::locate_slow_landings`]).
-//! Without it, a landing slower than the split speed (`0.01 g h`) that came within the contact
+//! projection's tolerance instead of the contact tolerance (`Stepper::locate_slow_landings`,
+//! below). Without it, a landing slower than the split speed (`0.01 g h`) that came within the contact
 //! tolerance (`1e-9` of the drum size) of its face was taken into the index set there and stopped
 //! by the velocity law at that gap, then pulled onto the face by the projection: the weight times
 //! a gap set by the tolerance, not by the step, so halving did not reduce it (nanoradian rocking:
