@@ -101,7 +101,7 @@ impl Stepper {
         let end = &self.geometry[k0].ends[c0];
         let g1 = end.gap;
         let (u1, _) = self.drums.rates(&end.rows, &self.v, k0);
-        let tau_star = (g1 < -self.contact_gap).then(|| Self::hermite_root(g0, u0, g1, u1, tau));
+        let tau_star = (g1 < -self.touch_gap).then(|| Self::hermite_root(g0, u0, g1, u1, tau));
         // An end that reached its face before the predicted one (or instead of it).
         if let Some(first) = self.missed_landing(tau) {
             if tau_star.map_or(true, |ts| first < ts * (1.0 - 1e-9)) {
@@ -124,7 +124,7 @@ impl Stepper {
                 if self.options.project {
                     self.project(a1, true)?;
                 }
-                if g1 > self.contact_gap {
+                if g1 > self.touch_gap {
                     // Not there yet (it slowed down): keep the sub-step; the next round looks
                     // again.
                     return Ok(());

@@ -48,7 +48,11 @@ impl Stepper {
     /// (deeper than a tenth of what the split speed covers in the step), arriving faster than the
     /// split speed: their landing instants (Hermite) into `self.missed`, the first one returned.
     pub(super) fn missed_landing(&mut self, h: f64) -> Option<f64> {
-        let deep = 0.1 * self.v_split * h;
+        let deep = if self.slow_landings {
+            self.projection_gap
+        } else {
+            0.1 * self.v_split * h
+        };
         let mut best: Option<f64> = None;
         for k in 0..self.drums.len() {
             for c in 0..2 {
@@ -100,7 +104,7 @@ impl Stepper {
         } else {
             self.drums.rates(&e.rows, &self.v, k).0
         };
-        if e.gap <= self.contact_gap {
+        if e.gap <= self.touch_gap {
             (un < -self.v_touch).then_some(0.0)
         } else {
             (un < -v_split).then(|| e.gap / -un)
@@ -275,7 +279,7 @@ impl Stepper {
         // `consistent::IMPACT_GAP`); the model comparisons that call this outside a step have
         // the contact tolerance.
         let impact_gap = if self.options.energy_consistent {
-            self.impact_gap.max(eps)
+            self.impact_gap.max(self.touch_gap)
         } else {
             eps
         };

@@ -210,6 +210,12 @@ pub struct Stepper {
     /// Gap (m) within which an end takes part in a located impact: the contact tolerance, and
     /// with `energy_consistent` [`super::consistent::IMPACT_GAP`]` · g h²` if larger.
     pub(super) impact_gap: f64,
+    /// Gap (m) within which an end counts as touching in a sub-step (index set, landing
+    /// prediction): the contact tolerance, or the projection's in a retry of the error control
+    /// ([`super::refine`], `slow_landings`).
+    pub(super) touch_gap: f64,
+    /// Set by the error control for its retries with `energy_consistent`: every landing located.
+    pub(super) slow_landings: bool,
 }
 
 #[derive(Clone, Debug)]
@@ -283,6 +289,8 @@ impl Stepper {
             v_split: 0.0,
             v_touch: 0.0,
             impact_gap: 0.0,
+            touch_gap: 1e-9 * size,
+            slow_landings: false,
             q,
             drums,
         };
@@ -369,6 +377,7 @@ impl Stepper {
             self.impact_gap = self.contact_gap;
             MAX_SPLITS
         };
+        self.locate_slow_landings(h);
         loop {
             let remaining = t_end - self.t;
             if remaining <= 1e-12 * h {
@@ -464,7 +473,7 @@ impl Stepper {
         self.drums
             .joints_rows_into(&self.q_next, &mut self.predicted);
         // The index set: ends touching their face and ends predicted (linearly) to close.
-        let eps = self.contact_gap;
+        let eps = self.touch_gap;
         for k in 0..n {
             for c in 0..2 {
                 let e = &self.geometry[k].ends[c];
@@ -502,7 +511,7 @@ impl Stepper {
                     && ((self.carried[k][c] && ub[c] >= -self.v_touch)
                         || (self.options.energy_consistent
                             && ub[c] >= 0.0
-                            && self.geometry[k].ends[c].gap <= self.contact_gap))
+                            && self.geometry[k].ends[c].gap <= self.touch_gap))
                 {
                     shift[c] = ub[c];
                 }

@@ -13,6 +13,18 @@
 //! its centre of mass (micro-rocking runs: no refinement below that). A step at the shortest
 //! length is kept whatever its error (counted in `StepCounters::refine_floor`).
 //!
+//! With `energy_consistent`, a retry (every sub-step below the grid step) also locates every
+//! landing of an open end whatever its speed, and counts an end as touching only within the
+//! projection's tolerance instead of the contact tolerance (`Stepper::locate_slow_landings`,
+//! below). Without it, a landing slower than the split speed (`0.01 g h`) that came within the contact
+//! tolerance (`1e-9` of the drum size) of its face was taken into the index set there and stopped
+//! by the velocity law at that gap, then pulled onto the face by the projection: the weight times
+//! a gap set by the tolerance, not by the step, so halving did not reduce it (nanoradian rocking:
+//! 2e-5 J a landing against runs of 1e-4 J; docs/nanoradian-rocking.md).
+//! Moreau–Jean's index set is the predicted one (Acary & Brogliato 2008 §10.1) and the
+//! projection (Acary 2013) is there for the `O(h²)` drift of persistent contacts; a landing is
+//! an event, located as the fast ones are.
+//!
 //! The run sees one step of the grid: the impacts located in the accepted sub-steps, in order,
 //! are the step's `impacts`; the counters are those of the accepted sub-steps (a rejected attempt
 //! is rolled back with the state) plus `refined`, the steps redone; the joints' modes, and with
@@ -95,7 +107,10 @@ impl Refiner {
         if !last {
             self.save(st, depth);
         }
+        // A retry locates every landing (see `Stepper::locate_slow_landings`).
+        st.slow_landings = depth > 0 && st.options().energy_consistent;
         let result = st.step(h, motion);
+        st.slow_landings = false;
         let step_error = (error(st) - before).abs();
         if result.is_err() || step_error <= allowed || last {
             if result.is_ok() && step_error > allowed {
@@ -125,5 +140,23 @@ impl Refiner {
         std::mem::swap(&mut st.saved, &mut self.slots[depth]);
         st.restore();
         std::mem::swap(&mut st.saved, &mut self.slots[depth]);
+    }
+}
+
+impl Stepper {
+    /// In a retry of the control (`slow_landings`), from the step's `h`: every landing of an open
+    /// end is located, whatever its speed, and an end counts as touching only within the
+    /// projection's tolerance. Otherwise the contact tolerance, as without the control.
+    pub(super) fn locate_slow_landings(&mut self, h: f64) {
+        if !self.slow_landings {
+            self.touch_gap = self.contact_gap;
+            return;
+        }
+        self.v_split = 0.0;
+        self.touch_gap = self.projection_gap;
+        let g = self.options.gravity;
+        self.impact_gap = self
+            .projection_gap
+            .max(super::consistent::IMPACT_GAP * g * h * h);
     }
 }
