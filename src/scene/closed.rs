@@ -82,7 +82,7 @@ pub(super) fn build(
     name: &str,
 ) -> Result<LoopScene, SceneError> {
     // Settings of the column drivers have no meaning here: name them rather than ignore them.
-    let column_only: [(&str, bool); 10] = [
+    let column_only: [(&str, bool); 12] = [
         ("blocks", !spec.blocks.is_empty()),
         ("initial_angles", spec.initial_angles.is_some()),
         ("impacts", spec.impacts != 1),
@@ -93,6 +93,8 @@ pub(super) fn build(
         ("on_tension", spec.on_tension.is_some()),
         ("scheme", spec.scheme.is_some()),
         ("continue_until_fallen", spec.continue_until_fallen),
+        ("energy_tolerance", spec.energy_tolerance.is_some()),
+        ("energy_consistent", spec.energy_consistent),
     ];
     if let Some((field, _)) = column_only.iter().find(|(_, set)| *set) {
         return Err(err(field, "not used by a closed chain (arch, colonnade)"));

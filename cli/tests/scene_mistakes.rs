@@ -1,0 +1,169 @@
+//! `rocking simulate` on the mistakes a user makes in a scene: every one is an error that names
+//! the field and what is allowed, none is ignored, and nothing is written.
+
+mod common;
+
+use std::path::PathBuf;
+
+fn fresh_dir(name: &str) -> PathBuf {
+    let d = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(name);
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// Runs each scene text (written next to a copy of the bundled record) and asserts that it fails
+/// with every `words` in its message and writes no output.
+fn refused(dir: &str, cases: &[(String, &[&str])]) {
+    let dir = fresh_dir(dir);
+    std::fs::copy(
+        common::root().join("examples/records/synthetic.AT2"),
+        dir.join("synthetic.AT2"),
+    )
+    .unwrap();
+    let scene = dir.join("scene.json");
+    let out = dir.join("out");
+    let mut accepted = Vec::new();
+    for (text, words) in cases {
+        std::fs::write(&scene, text).unwrap();
+        let run = common::run([
+            "simulate".as_ref(),
+            scene.as_os_str(),
+            "--out".as_ref(),
+            out.as_os_str(),
+        ]);
+        if run.ok || !words.iter().all(|w| run.stderr.contains(w)) {
+            accepted.push(format!("{text}\n  -> ok {}: {}", run.ok, run.stderr));
+        }
+        assert!(!out.exists(), "output written for {text}");
+    }
+    assert!(accepted.is_empty(), "{}", accepted.join("\n"));
+}
+
+const COLUMN: &str = r#""blocks": [{"width": 1, "height": 2, "mass": 5000}, {"width": 1, "height": 2, "mass": 5000}], "duration": 1, "dt": 0.001"#;
+const ARCH: &str =
+    r#""arch": {"radius": 5, "thickness": 0.75, "voussoirs": 8}, "duration": 0.1, "dt": 0.001"#;
+
+/// A PEER `.AT2` record is in g and states its step: `"units": "m/s2"` or a `dt` given for one
+/// were silently dropped (the record ran in g at its own step).
+#[test]
+fn units_or_a_step_given_for_an_at2_record_are_named() {
+    let record = |extra: &str| {
+        format!(
+            r#"{{{COLUMN}, "excitation": {{"type": "record", "path": "synthetic.AT2"{extra}}}}}"#
+        )
+    };
+    refused(
+        "at2_units",
+        &[
+            (
+                record(r#", "units": "m/s2""#),
+                &["excitation.units", "in g"],
+            ),
+            (
+                record(r#", "units": "cm/s2""#),
+                &["excitation.units", "in g"],
+            ),
+            (record(r#", "dt": 0.005"#), &["excitation.dt", "DT"]),
+        ],
+    );
+    // "g" is what the file is in: accepted.
+    let dir = fresh_dir("at2_units_g");
+    std::fs::copy(
+        common::root().join("examples/records/synthetic.AT2"),
+        dir.join("synthetic.AT2"),
+    )
+    .unwrap();
+    std::fs::write(dir.join("scene.json"), record(r#", "units": "g""#)).unwrap();
+    let out = dir.join("out");
+    let run = common::run([
+        "simulate".as_ref(),
+        dir.join("scene.json").as_os_str(),
+        "--out".as_ref(),
+        out.as_os_str(),
+    ]);
+    assert!(run.ok, "{}", run.stderr);
+}
+
+/// The contact scheme's error control and consistent impacts mean nothing to the loop driver:
+/// an arch scene with them ran as if they were not there.
+#[test]
+fn the_contact_schemes_settings_in_an_arch_scene_are_named() {
+    let none = r#""excitation": {"type": "none"}"#;
+    refused(
+        "arch_energy",
+        &[
+            (
+                format!(r#"{{{ARCH}, {none}, "energy_tolerance": 1e-6}}"#),
+                &["energy_tolerance", "closed chain"],
+            ),
+            (
+                format!(r#"{{{ARCH}, {none}, "energy_consistent": true}}"#),
+                &["energy_consistent", "closed chain"],
+            ),
+        ],
+    );
+}
+
+/// A value of the wrong type names its field (serde's message gave only a line and column), and
+/// an integrator object takes no field but `type` and `theta` (others were ignored).
+#[test]
+fn a_value_of_the_wrong_type_names_its_field() {
+    let none = r#""excitation": {"type": "none"}"#;
+    refused(
+        "wrong_types",
+        &[
+            (
+                format!(r#"{{{COLUMN}, {none}, "impacts": 2.0}}"#),
+                &["impacts: invalid type"],
+            ),
+            (
+                format!(r#"{{{COLUMN}, {none}, "gravity": "9.81"}}"#),
+                &["gravity: invalid type"],
+            ),
+            (
+                format!(
+                    r#"{{{COLUMN}, "excitation": {{"type": "half_sine", "amplitude": NaN, "duration": 1}}}}"#
+                ),
+                &["excitation.amplitude: expected value"],
+            ),
+            (
+                format!(
+                    r#"{{"blocks": [{{"width": 1, "height": 2, "mass": 5000}}, {{"width": 1, "height": true, "mass": 5000}}], {none}, "duration": 1, "dt": 0.001}}"#
+                ),
+                &["blocks[1].height: invalid type"],
+            ),
+            (
+                format!(
+                    r#"{{{COLUMN}, {none}, "integrator": {{"type": "wilson", "theta": 1.4, "gamma": 0.5}}}}"#
+                ),
+                &["integrator: ", "no other field"],
+            ),
+            (
+                format!(r#"{{{COLUMN}, {none}, "integrator": {{"type": "newmark"}}}}"#),
+                &["integrator: ", "wilson", "dop853"],
+            ),
+            (
+                format!(r#"{{{ARCH}, {none}, "output": {{"every": 2.5}}}}"#),
+                &["output.every: invalid type"],
+            ),
+            (
+                format!(
+                    r#"{{"arch": {{"radius": 5, "thickness": 0.75, "voussoirs": 8.5}}, {none}, "duration": 0.1, "dt": 0.001}}"#
+                ),
+                &["arch.voussoirs: invalid type"],
+            ),
+            (
+                format!(
+                    r#"{{{COLUMN}, "excitation": {{"type": "half_sine", "amplitude": 3, "phase": 1, "duration": 1}}}}"#
+                ),
+                &["excitation: unknown field `phase`"],
+            ),
+            // A field beside `"type": "none"` was dropped: the column rocked freely.
+            (
+                format!(r#"{{{COLUMN}, "excitation": {{"type": "none", "amplitude": 5}}}}"#),
+                &["excitation: unknown field `amplitude`"],
+            ),
+        ],
+    );
+}
