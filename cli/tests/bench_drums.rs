@@ -118,3 +118,58 @@ fn energy_residual_is_within_a_thousandth_with_consistent_impacts() {
         assert_eq!(r.len(), 22, "no refine columns without --energy-tol: {r:?}");
     }
 }
+
+/// A bad `--pga` or `--mu` is refused before any run, naming the argument (a NaN, 0 or negative
+/// value failed in the middle of the suite, after the runs of the values before it, as `target =
+/// NaN` or `invalid drum option friction`).
+#[test]
+fn a_bad_pga_or_mu_is_refused_before_any_run() {
+    for bad in [
+        "--pga=nan",
+        "--pga=-1",
+        "--pga=0",
+        "--pga=4,inf",
+        "--mu=nan",
+        "--mu=0",
+        "--mu=0.5,-1",
+    ] {
+        let run = common::run([
+            "bench",
+            "drums",
+            "--records",
+            "examples/records",
+            "--drums",
+            "1",
+            "--shapes",
+            "1x10",
+            "--threads",
+            "1",
+            bad,
+        ]);
+        let arg = bad.split('=').next().unwrap();
+        assert!(!run.ok, "{bad} accepted: {}", run.stdout);
+        assert!(run.stderr.contains(arg), "{bad}: {}", run.stderr);
+        assert!(
+            !run.stdout.contains("How the runs ended"),
+            "{bad} ran: {}",
+            run.stdout
+        );
+    }
+    let run = common::run([
+        "bench",
+        "drums",
+        "--records",
+        "examples/records",
+        "--drums",
+        "1",
+        "--shapes",
+        "1x10",
+        "--threads",
+        "1",
+        "--pga",
+        "4",
+        "--mu",
+        "inf",
+    ]);
+    assert!(run.ok, "--mu inf (no sliding): {}", run.stderr);
+}

@@ -23,7 +23,7 @@ use rocking::ground::excitation::Excitation;
 use rocking::ground::records::{read_at2, Record};
 use rocking::model::column::{Block, Column};
 
-use crate::commands::sweep::{count, set_threads, Shard};
+use crate::commands::sweep::{count, positive, set_threads, Shard};
 use crate::output::write_atomic;
 use crate::progress;
 
@@ -47,10 +47,10 @@ pub struct DrumsBenchArgs {
     #[arg(long, value_delimiter = ',', value_parser = shape)]
     pub shapes: Option<Vec<(f64, f64)>>,
     /// Peak ground accelerations (m/s²).
-    #[arg(long, value_delimiter = ',')]
+    #[arg(long, value_delimiter = ',', value_parser = positive)]
     pub pga: Option<Vec<f64>>,
-    /// Friction coefficients.
-    #[arg(long, value_delimiter = ',')]
+    /// Friction coefficients (> 0; `inf`: no sliding).
+    #[arg(long, value_delimiter = ',', value_parser = friction)]
     pub mu: Option<Vec<f64>>,
     /// Time step (s).
     #[arg(long, default_value_t = 1e-3)]
@@ -79,6 +79,18 @@ pub struct DrumsBenchArgs {
     /// Also write the report to this file.
     #[arg(long)]
     pub out: Option<PathBuf>,
+}
+
+/// A friction coefficient: a number > 0, infinity (no sliding) included; checked with the
+/// other arguments, before any run (a NaN or 0 failed in the first run of that μ, naming the
+/// scheme's option, not `--mu`).
+fn friction(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(mu) if mu > 0.0 => Ok(mu),
+        _ => Err(format!(
+            "{s}: a friction coefficient must be a number > 0 (inf: no sliding)"
+        )),
+    }
 }
 
 fn shape(s: &str) -> Result<(f64, f64), String> {
