@@ -196,6 +196,8 @@ def _json_value(x):
 
 def _check_finite(value, path):
     """A RockingError naming the field of the first NaN or infinity (JSON has none)."""
+    if isinstance(value, np.ndarray) and value.ndim == 0:
+        value = value[()]  # a 0-d array is its number (json.dumps writes it as one)
     if isinstance(value, Mapping):
         for k, v in value.items():
             _check_finite(v, f"{path}.{k}" if path else str(k))
