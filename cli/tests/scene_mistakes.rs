@@ -167,3 +167,31 @@ fn a_value_of_the_wrong_type_names_its_field() {
         ],
     );
 }
+
+/// An arch scene whose duration needs more than the loop driver's 1e10 steps is refused as a
+/// column's is, `dt` named, at the scene (it reached the driver, whose message printed the
+/// duration's 301 digits).
+#[test]
+fn an_arch_scene_of_too_many_steps_names_dt() {
+    let arch = r#""arch": {"radius": 5, "thickness": 0.75, "voussoirs": 8}, "excitation": {"type": "none"}"#;
+    refused(
+        "arch_steps",
+        &[(
+            format!(r#"{{{arch}, "duration": 1e300, "dt": 0.001}}"#),
+            &["dt: 0.001: more than 1e10 steps"],
+        )],
+    );
+    let dir = fresh_dir("arch_steps_message");
+    std::fs::write(
+        dir.join("scene.json"),
+        format!(r#"{{{arch}, "duration": 1e300, "dt": 0.001}}"#),
+    )
+    .unwrap();
+    let run = common::run([
+        "simulate".as_ref(),
+        dir.join("scene.json").as_os_str(),
+        "--out".as_ref(),
+        dir.join("out").as_os_str(),
+    ]);
+    assert!(run.stderr.len() < 200, "{}", run.stderr);
+}

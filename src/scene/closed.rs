@@ -180,10 +180,22 @@ pub(super) fn build(
             ))
         }
     };
+    let (dt, duration) = (
+        positive("dt", spec.dt)?,
+        positive("duration", spec.duration)?,
+    );
+    // The loop driver's own limit, named as a column scene names it (the driver's message
+    // printed the duration with all its digits: 300 of them for 1e300 s).
+    if duration / dt > 1e10 {
+        return Err(err(
+            "dt",
+            format!("{dt}: more than 1e10 steps for the duration"),
+        ));
+    }
     let options = LoopOptions {
         gravity: positive("gravity", spec.gravity.unwrap_or(defaults.gravity))?,
-        dt: positive("dt", spec.dt)?,
-        duration: positive("duration", spec.duration)?,
+        dt,
+        duration,
         model: ModelOptions {
             solver,
             ..ModelOptions::default()
