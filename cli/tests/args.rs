@@ -106,3 +106,28 @@ fn a_report_given_as_a_record_is_named_as_such() {
     assert!(!err.contains("JSON"), "{err}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// An arch's `--embrace` is judged in the degrees given and `--thickness-ratio` as t/R, both
+/// named (they reached the arch's own checks: `arch.embrace_angle = 6.283185307179586: must be
+/// less than 2π`, `arch.thickness = 2.5`).
+#[test]
+fn an_arch_family_out_of_range_is_named_in_its_own_units() {
+    for (command, arg, value) in [
+        ("oc", "--embrace", "360"),
+        ("oc", "--embrace", "400"),
+        ("oc", "--thickness-ratio", "2.5"),
+        ("oas", "--embrace", "360"),
+    ] {
+        let mut args = vec!["arch", command, arg, value, "--voussoirs", "4"];
+        if command == "oas" {
+            args.push("examples/records/synthetic.AT2");
+        }
+        let (code, _, err) = rocking(&args);
+        assert_eq!(code, 2, "{args:?}: {err}");
+        assert!(err.contains(arg) && err.contains(value), "{args:?}: {err}");
+        assert!(
+            !err.contains("2π") && !err.contains("arch.thickness"),
+            "{err}"
+        );
+    }
+}
