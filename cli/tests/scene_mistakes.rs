@@ -195,3 +195,43 @@ fn an_arch_scene_of_too_many_steps_names_dt() {
     ]);
     assert!(run.stderr.len() < 200, "{}", run.stderr);
 }
+
+/// A colonnade's fields are named as the scene spells them: a negative `column_mass` was
+/// `colonnade.left[0].mass` and a negative `span` `colonnade.beam.width: 0.0` (the beam the
+/// frame builds, `span + width` long).
+#[test]
+fn a_colonnades_bad_field_is_named_as_the_scene_spells_it() {
+    let colonnade = |field: &str, value: f64| {
+        let mut fields = [
+            ("width", 1.0),
+            ("height", 4.0),
+            ("column_mass", 1000.0),
+            ("span", 3.0),
+            ("beam_height", 0.5),
+            ("beam_mass", 500.0),
+        ];
+        for f in fields.iter_mut().filter(|f| f.0 == field) {
+            f.1 = value;
+        }
+        let fields: Vec<String> = fields
+            .iter()
+            .map(|(k, v)| format!(r#""{k}": {v}"#))
+            .collect();
+        format!(
+            r#"{{"colonnade": {{{}}}, "excitation": {{"type": "none"}}, "duration": 0.1, "dt": 0.001}}"#,
+            fields.join(", ")
+        )
+    };
+    let cases: Vec<(String, &[&str])> = vec![
+        (
+            colonnade("column_mass", -1.0),
+            &["colonnade.column_mass: -1"],
+        ),
+        (colonnade("span", -1.0), &["colonnade.span: -1"]),
+        (colonnade("beam_height", 0.0), &["colonnade.beam_height: 0"]),
+        (colonnade("width", -1.0), &["colonnade.width: -1"]),
+        // A span within the columns' width: the frame's own check, already by the scene's name.
+        (colonnade("span", 0.5), &["colonnade.span: 0.5", "overlap"]),
+    ];
+    refused("colonnade_fields", &cases);
+}

@@ -132,6 +132,19 @@ pub(super) fn build(
             (LoopShape::Arch(arch), chain)
         }
         (None, Some(c)) => {
+            // The scene's own fields, named as it spells them (the frame's checks name the
+            // blocks it builds: `colonnade.left[0].mass`, and `colonnade.beam.width` for a
+            // negative span).
+            for (field, v) in [
+                ("width", c.width),
+                ("height", c.height),
+                ("column_mass", c.column_mass),
+                ("span", c.span),
+                ("beam_height", c.beam_height),
+                ("beam_mass", c.beam_mass),
+            ] {
+                crate::validate::positive(format!("colonnade.{field}"), v).map_err(invalid)?;
+            }
             let frame = CappedColonnade::frame(
                 c.width,
                 c.height,
