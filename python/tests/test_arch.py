@@ -168,6 +168,10 @@ def test_arch_oas_errors_name_the_argument(root, args, field):
         (dict(ptp_n=0), "ptp_n"),
         (dict(level_n=0), "level_n"),
         (dict(voussoirs=0), "voussoirs"),
+        # Judged in the degrees and the t/R given (they were `arch.embrace_angle = 6.28…: must
+        # be less than 2π` and `arch.thickness = 2.5`).
+        (dict(embrace=360.0), "embrace = 360: must be greater than 0"),
+        (dict(thickness_ratio=2.5), "thickness_ratio = 2.5"),
     ],
 )
 def test_arch_oc_errors_name_the_argument(args, field):
