@@ -235,3 +235,60 @@ fn a_colonnades_bad_field_is_named_as_the_scene_spells_it() {
     ];
     refused("colonnade_fields", &cases);
 }
+
+/// A plain-text record in cm/s² (`"units": "cm/s2"`, as `rocking.read_record` reads it; the
+/// scene knew only m/s2 and g) runs as the same record written in m/s².
+#[test]
+fn a_record_in_cm_s2_runs_as_the_same_record_in_m_s2() {
+    let dir = fresh_dir("cm_s2");
+    let samples: Vec<(f64, f64)> = (0..400)
+        .map(|k| {
+            let t = k as f64 * 0.005;
+            (t, 9.0 * (std::f64::consts::PI * t / 1.0).sin().powi(3))
+        })
+        .collect();
+    let write = |name: &str, factor: f64| {
+        let text: String = samples
+            .iter()
+            .map(|(t, a)| format!("{t} {}\n", a * factor))
+            .collect();
+        std::fs::write(dir.join(name), text).unwrap();
+    };
+    write("m.txt", 1.0);
+    write("cm.txt", 100.0);
+    let mut outputs = Vec::new();
+    for (record, units) in [("m.txt", "m/s2"), ("cm.txt", "cm/s2")] {
+        let scene = dir.join(format!("{units}.json").replace('/', "_"));
+        std::fs::write(
+            &scene,
+            format!(
+                r#"{{"blocks": [{{"width": 1, "height": 4, "mass": 1000}}], "excitation": {{"type": "record", "path": "{record}", "units": "{units}"}}, "duration": 2, "dt": 0.001}}"#
+            ),
+        )
+        .unwrap();
+        let out = dir.join(format!("out_{record}"));
+        let run = common::run([
+            "simulate".as_ref(),
+            scene.as_os_str(),
+            "--out".as_ref(),
+            out.as_os_str(),
+        ]);
+        assert!(run.ok, "{units}: {}", run.stderr);
+        let events = std::fs::read_to_string(out.join("events.jsonl")).unwrap();
+        let events: Vec<(String, f64)> = events
+            .lines()
+            .map(|l| {
+                let e: serde_json::Value = serde_json::from_str(l).unwrap();
+                (e["kind"].to_string(), e["t"].as_f64().unwrap())
+            })
+            .collect();
+        outputs.push(events);
+    }
+    // The same events at the same instants (the samples differ by the round-off of × 100 × 0.01).
+    let (m, cm) = (&outputs[0], &outputs[1]);
+    assert!(m.len() >= 2, "{m:?}");
+    assert_eq!(m.len(), cm.len(), "{m:?} {cm:?}");
+    for (a, b) in m.iter().zip(cm) {
+        assert!(a.0 == b.0 && (a.1 - b.1).abs() < 1e-9, "{a:?} {b:?}");
+    }
+}

@@ -41,7 +41,8 @@ pub enum ExcitationSpec {
         nu: f64,
     },
     /// A recorded motion: PEER `.AT2` (in g), or plain text (one column with `dt`, or two
-    /// columns t, a) in m/s² unless `units` is "g". Scaled to `scale_to_pga` [m/s²] if given.
+    /// columns t, a) in m/s² unless `units` is "g" or "cm/s2". Scaled to `scale_to_pga` [m/s²]
+    /// if given.
     Record {
         path: PathBuf,
         #[serde(default)]
@@ -204,10 +205,12 @@ pub(super) fn excitation(spec: &ExcitationSpec, base: &Path) -> Result<Excitatio
             match units.as_deref() {
                 None | Some("m/s2") | Some("m/s^2") => {}
                 Some("g") => format = format.in_g(),
+                // As `rocking.read_record` reads them (many catalogues are in gal).
+                Some("cm/s2") | Some("cm/s^2") | Some("gal") => format.scale = 0.01,
                 Some(other) => {
                     return Err(err(
                         "excitation.units",
-                        format!("unknown units {other:?} (m/s2, g)"),
+                        format!("unknown units {other:?} (m/s2, g, cm/s2)"),
                     ))
                 }
             }
