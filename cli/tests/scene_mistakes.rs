@@ -159,6 +159,15 @@ fn a_value_of_the_wrong_type_names_its_field() {
                 ),
                 &["excitation: unknown field `phase`"],
             ),
+            // Lists where objects belong were read by position (width, height, mass; type, θ).
+            (
+                format!(r#"{{"blocks": [[1, 2, 5000]], {none}, "duration": 1, "dt": 0.001}}"#),
+                &["blocks[0]: a list where an object"],
+            ),
+            (
+                format!(r#"{{{COLUMN}, {none}, "integrator": ["wilson", 1.4]}}"#),
+                &["integrator: a list where an object"],
+            ),
             // A field beside `"type": "none"` was dropped: the column rocked freely.
             (
                 format!(r#"{{{COLUMN}, "excitation": {{"type": "none", "amplitude": 5}}}}"#),

@@ -9,7 +9,40 @@ use super::{SceneError, SceneSpec};
 /// Parses the JSON text of a scene; an error names the field it is in (a top-level one reads
 /// as before: `unknown field `frition`, expected one of …`).
 pub fn parse(text: &str) -> Result<SceneSpec, SceneError> {
+    if let Ok(value) = serde_json::from_str::<serde_json::Value>(text) {
+        objects_where_expected(&value)?;
+    }
     serde_json::from_str(text).map_err(|e| SceneError(with_field(text, &e)))
+}
+
+/// serde reads a struct from a list as well, by position: `"blocks": [[1, 2, 5000]]` was a
+/// block of width 1, height 2 and mass 5000, `"integrator": ["wilson", 1.4]` a θ. Where the
+/// scene has an object, a list is refused, named.
+fn objects_where_expected(scene: &serde_json::Value) -> Result<(), SceneError> {
+    use serde_json::Value;
+    let list = |path: &str| {
+        SceneError(format!(
+            "{path}: a list where an object with named fields is expected (values are not read \
+             by position)"
+        ))
+    };
+    let Some(fields) = scene.as_object() else {
+        return match scene {
+            Value::Array(_) => Err(list("scene")),
+            _ => Ok(()), // serde says what it is
+        };
+    };
+    if let Some(Value::Array(blocks)) = fields.get("blocks") {
+        if let Some(k) = blocks.iter().position(Value::is_array) {
+            return Err(list(&format!("blocks[{k}]")));
+        }
+    }
+    for key in ["arch", "colonnade", "excitation", "integrator", "output"] {
+        if fields.get(key).is_some_and(Value::is_array) {
+            return Err(list(key));
+        }
+    }
+    Ok(())
 }
 
 /// serde's message, after the path of the field at its position when there is one.
@@ -228,6 +261,25 @@ mod tests {
             r#"{{"blocks": [{block}], "duration": 1, "dt": 0.001, "excitation": {{"type": "none", "phase": 1}}}}"#
         ));
         assert!(e.starts_with("excitation: unknown field `phase`"), "{e}");
+        // Lists where the scene has objects: refused, not read by position.
+        for (text, path) in [
+            (
+                format!(r#"{{"blocks": [{block}, [1, 2, 5000]], {base}}}"#),
+                "blocks[1]: a list",
+            ),
+            (
+                format!(r#"{{"blocks": [{block}], {base}, "integrator": ["wilson", 1.4]}}"#),
+                "integrator: a list",
+            ),
+            (
+                format!(r#"{{"arch": [5, 0.75, 180, 8], {base}}}"#),
+                "arch: a list",
+            ),
+            ("[]".to_string(), "scene: a list"),
+        ] {
+            let e = error(&text);
+            assert!(e.starts_with(path), "{path}: {e}");
+        }
         // Top-level fields read as serde says them, without a path in front.
         let e = error(&format!(
             r#"{{"blocks": [{block}], {base}, "frition": 0.5}}"#
