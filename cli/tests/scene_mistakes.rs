@@ -301,3 +301,41 @@ fn a_record_in_cm_s2_runs_as_the_same_record_in_m_s2() {
         assert!(a.0 == b.0 && (a.1 - b.1).abs() < 1e-9, "{a:?} {b:?}");
     }
 }
+
+/// `--plot` with `"output": {"history": false}` is refused before the run, nothing written (it
+/// was refused after the run, its files written and, for an arch, its first chart drawn).
+#[test]
+fn plot_without_history_is_refused_before_the_run() {
+    let dir = fresh_dir("plot_no_history");
+    let none = r#""excitation": {"type": "half_sine", "amplitude": -6, "duration": 1}"#;
+    for (k, body) in [
+        format!(r#"{COLUMN}, {none}"#),
+        format!(r#"{ARCH}, {none}"#),
+        format!(r#"{COLUMN}, {none}, "on_sliding": "slide""#),
+    ]
+    .iter()
+    .enumerate()
+    {
+        let scene = dir.join(format!("scene{k}.json"));
+        std::fs::write(
+            &scene,
+            format!(r#"{{{body}, "output": {{"history": false}}}}"#),
+        )
+        .unwrap();
+        let out = dir.join(format!("out{k}"));
+        let run = common::run([
+            "simulate".as_ref(),
+            scene.as_os_str(),
+            "--out".as_ref(),
+            out.as_os_str(),
+            "--plot".as_ref(),
+            out.join("plot.svg").as_os_str(),
+        ]);
+        assert!(
+            !run.ok && run.stderr.contains("--plot needs the history"),
+            "{body}: {}",
+            run.stderr
+        );
+        assert!(!out.exists(), "{body}: written");
+    }
+}

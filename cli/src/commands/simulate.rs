@@ -35,7 +35,16 @@ pub struct SimulateArgs {
 /// Runs the command.
 pub fn run(a: &SimulateArgs) -> Result<(), String> {
     let (scene_path, out, plot) = (a.scene.as_path(), a.out.as_path(), a.plot.as_deref());
-    let scene = match scene::load_any(scene_path).map_err(|e| e.to_string())? {
+    let any = scene::load_any(scene_path).map_err(|e| e.to_string())?;
+    // Before the run (it was found after it, its files written and an arch's chart drawn).
+    let history = match &any {
+        scene::AnyScene::Column(s) => s.output.history,
+        scene::AnyScene::Loop(s) => s.output.history,
+    };
+    if plot.is_some() && !history {
+        return Err("--plot needs the history (output.history must be true)".into());
+    }
+    let scene = match any {
         scene::AnyScene::Column(scene) => scene,
         scene::AnyScene::Loop(scene) => {
             return super::simulate_loop::run(&scene, scene_path, out, plot)
