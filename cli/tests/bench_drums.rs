@@ -173,3 +173,49 @@ fn a_bad_pga_or_mu_is_refused_before_any_run() {
     ]);
     assert!(run.ok, "--mu inf (no sliding): {}", run.stderr);
 }
+
+/// An output that cannot be written is refused before the runs (a suite of hours wrote its
+/// `--csv` or `--out` only at the end, and failed there).
+#[test]
+fn an_unwritable_output_is_refused_before_any_run() {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("bench_drums_unwritable");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let folder = dir.to_string_lossy().into_owned();
+    for (flag, path) in [
+        ("--csv", "/proc/rocking/runs.csv"),
+        ("--out", "/proc/rocking/report.md"),
+        ("--csv", folder.as_str()),
+    ] {
+        let run = common::run([
+            "bench",
+            "drums",
+            "--records",
+            "examples/records",
+            "--drums",
+            "1",
+            "--shapes",
+            "1x10",
+            "--pga",
+            "4",
+            "--mu",
+            "0.5",
+            "--threads",
+            "1",
+            flag,
+            path,
+        ]);
+        assert!(!run.ok, "{flag} {path} accepted");
+        assert!(run.stderr.contains(flag), "{flag} {path}: {}", run.stderr);
+        assert!(
+            !run.stdout.contains("How the runs ended"),
+            "{flag} {path} ran: {}",
+            run.stdout
+        );
+    }
+    assert_eq!(
+        std::fs::read_dir(&dir).unwrap().count(),
+        0,
+        "a probe was left behind"
+    );
+}

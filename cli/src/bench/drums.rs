@@ -24,7 +24,7 @@ use rocking::ground::records::{read_at2, Record};
 use rocking::model::column::{Block, Column};
 
 use crate::commands::sweep::{count, positive, set_threads, Shard};
-use crate::output::write_atomic;
+use crate::output::{check_writable, write_atomic};
 use crate::progress;
 
 /// Options of `rocking bench drums`.
@@ -203,6 +203,11 @@ fn stop_name(s: &DrumStop) -> &'static str {
 pub fn run(args: &DrumsBenchArgs) -> Result<(), String> {
     if let Some(n) = args.threads {
         set_threads(n);
+    }
+    for (flag, path) in [("--csv", &args.csv), ("--out", &args.out)] {
+        if let Some(p) = path {
+            check_writable(flag, p)?;
+        }
     }
     if !(args.dt.is_finite() && args.dt > 0.0) {
         return Err(format!("--dt: {}: must be a number > 0", args.dt));
