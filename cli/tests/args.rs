@@ -131,3 +131,65 @@ fn an_arch_family_out_of_range_is_named_in_its_own_units() {
         );
     }
 }
+
+/// A reversed range of an OC's or an arch OAS's grid is refused, both arguments named (it ran on
+/// a reversed grid: `oc --ptp-min 5 --ptp-max 1`, levels 1 … 0.5 with `--level-max 0.5`).
+#[test]
+fn a_reversed_grid_range_is_refused_naming_both_ends() {
+    for (args, words) in [
+        (
+            vec![
+                "oc",
+                "--ptp-min",
+                "5",
+                "--ptp-max",
+                "1",
+                "--ptp-n",
+                "2",
+                "--level-n",
+                "2",
+            ],
+            ["--ptp-min (5)", "--ptp-max (1)"],
+        ),
+        (
+            vec!["oc", "--level-max", "0.5", "--ptp-n", "2", "--level-n", "2"],
+            ["--level-max (0.5)", "above 1"],
+        ),
+        (
+            vec![
+                "arch",
+                "oc",
+                "--ptp-min",
+                "5",
+                "--ptp-max",
+                "1",
+                "--voussoirs",
+                "4",
+            ],
+            ["--ptp-min (5)", "--ptp-max (1)"],
+        ),
+        (
+            vec!["arch", "oc", "--level-max", "1", "--voussoirs", "4"],
+            ["--level-max (1)", "above 1"],
+        ),
+        (
+            vec![
+                "arch",
+                "oas",
+                "examples/records/synthetic.AT2",
+                "--level-min",
+                "5",
+                "--level-max",
+                "2",
+                "--voussoirs",
+                "4",
+            ],
+            ["--level-min (5)", "--level-max (2)"],
+        ),
+    ] {
+        let (code, out, err) = rocking(&args);
+        assert_ne!(code, 0, "{args:?} accepted: {out}");
+        assert!(words.iter().all(|w| err.contains(w)), "{args:?}: {err}");
+        assert!(out.is_empty(), "{args:?} ran: {out}");
+    }
+}

@@ -143,6 +143,13 @@ fn run_oas(a: &ArchOasArgs) -> Result<(), String> {
             a.radius_min, a.radius_max
         ));
     }
+    super::sweep::ascending(
+        "--level-min",
+        a.level_min,
+        "--level-max",
+        a.level_max,
+        a.level_n,
+    )?;
     let record = super::sweep::read(&a.record)?;
     let options = ArchOasOptions {
         levels: linear_levels(a.level_min, a.level_max, a.level_n),
@@ -290,6 +297,8 @@ pub struct ArchOcArgs {
 }
 
 fn run_oc(a: &ArchOcArgs) -> Result<(), String> {
+    super::sweep::ascending("--ptp-min", a.ptp_min, "--ptp-max", a.ptp_max, a.ptp_n)?;
+    super::sweep::levels_from_one(a.level_max, a.level_n)?;
     let options = a.family.options();
     let sim = &options.simulation;
     let onset =

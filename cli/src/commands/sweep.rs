@@ -29,6 +29,26 @@ pub fn non_negative(s: &str) -> Result<f64, String> {
     }
 }
 
+/// A grid of `n` points from `lo` (`lo_flag`) to `hi` (`hi_flag`) runs upwards: a reversed
+/// range ran, silently, on a reversed grid (`oc --ptp-min 5 --ptp-max 1`).
+pub fn ascending(lo_flag: &str, lo: f64, hi_flag: &str, hi: f64, n: usize) -> Result<(), String> {
+    if n > 1 && lo >= hi {
+        return Err(format!("{lo_flag} ({lo}) must be below {hi_flag} ({hi})"));
+    }
+    Ok(())
+}
+
+/// Levels linear from 1 to `--level-max`: it is above 1 (0.5 gave the levels 1 … 0.5, below
+/// the level at which a block starts to rock).
+pub fn levels_from_one(level_max: f64, n: usize) -> Result<(), String> {
+    if n > 1 && level_max <= 1.0 {
+        return Err(format!(
+            "--level-max ({level_max}) must be above 1 (the levels run linearly from 1)"
+        ));
+    }
+    Ok(())
+}
+
 /// A count ≥ 1.
 pub fn count(s: &str) -> Result<usize, String> {
     match s.parse::<usize>() {
