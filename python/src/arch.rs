@@ -105,6 +105,7 @@ pub fn _arch_oas<'py>(
         positive("level_max", level_max)?,
     );
     let level_n = count("level_n", level_n)?;
+    crate::errors::ascending("level_min", level_min, "level_max", level_max, level_n)?;
     let t1 = t1.map(|t| positive("t1", t)).transpose()?;
     let (record, _) = record_of(record)?;
     let o = ArchOasOptions {
@@ -166,6 +167,8 @@ pub fn _arch_oc<'py>(
     let ptp_n = count("ptp_n", ptp_n)?;
     let level_max = positive("level_max", level_max)?;
     let level_n = count("level_n", level_n)?;
+    crate::errors::ascending("ptp_min", ptp_min, "ptp_max", ptp_max, ptp_n)?;
+    crate::errors::levels_from_one(level_max, level_n)?;
     let sim = &options.simulation;
     let onset =
         spectra::arch_onset(&options.shape, sim.gravity, &sim.model).map_err(spectra_error)?;

@@ -167,6 +167,11 @@ def test_other_errors(root, tmp_path):
         rocking.oc("square")
     with pytest.raises(rocking.RockingError, match="size"):
         rocking.oc(size=-1.0)
+    # A reversed grid range (it ran on the reversed grid), as `rocking oc`.
+    with pytest.raises(rocking.RockingError, match="ptp_min = 5: must be below ptp_max"):
+        rocking.oc(ptp_min=5.0, ptp_max=1.0, ptp=2, levels=2)
+    with pytest.raises(rocking.RockingError, match="level_max = 0.5: must be above 1"):
+        rocking.oc(level_max=0.5, ptp=2, levels=2)
 
 
 def test_ctrl_c_stops_a_sweep(root):
