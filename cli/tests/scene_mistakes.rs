@@ -339,3 +339,47 @@ fn plot_without_history_is_refused_before_the_run() {
         assert!(!out.exists(), "{body}: written");
     }
 }
+
+/// A run that writes no history or events (`output.history` / `output.events` false) into the
+/// folder of an earlier run removes that run's `history.csv` and `events.jsonl`: they stayed,
+/// an earlier run's events (an overturning) beside this run's summary (end of duration).
+#[test]
+fn a_run_without_history_leaves_no_earlier_history_beside_its_summary() {
+    let dir = fresh_dir("stale_outputs");
+    let pulse = r#""excitation": {"type": "half_sine", "amplitude": -6, "duration": 1}"#;
+    for (k, body) in [
+        format!(r#"{COLUMN}, {pulse}"#),
+        format!(r#"{ARCH}, {pulse}"#),
+        format!(r#"{COLUMN}, {pulse}, "on_sliding": "slide""#),
+    ]
+    .iter()
+    .enumerate()
+    {
+        let out = dir.join(format!("out{k}"));
+        let simulate = |output: &str| {
+            let scene = dir.join(format!("scene{k}.json"));
+            std::fs::write(&scene, format!(r#"{{{body}{output}}}"#)).unwrap();
+            let run = common::run([
+                "simulate".as_ref(),
+                scene.as_os_str(),
+                "--out".as_ref(),
+                out.as_os_str(),
+            ]);
+            assert!(run.ok, "{body}{output}: {}", run.stderr);
+        };
+        simulate("");
+        assert!(out.join("history.csv").exists() && out.join("events.jsonl").exists());
+        simulate(r#", "output": {"history": false}"#);
+        assert!(
+            !out.join("history.csv").exists(),
+            "{body}: an earlier history.csv stayed"
+        );
+        assert!(out.join("events.jsonl").exists());
+        simulate(r#", "output": {"events": false, "history": false}"#);
+        assert!(
+            !out.join("events.jsonl").exists(),
+            "{body}: an earlier events.jsonl stayed"
+        );
+        assert!(out.join("summary.json").exists());
+    }
+}

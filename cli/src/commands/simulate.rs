@@ -4,7 +4,8 @@
 //!
 //! Writes `DIR/history.csv` (t, interface angles and rates, block rotations, statuses),
 //! `DIR/events.jsonl` (one JSON object per event) and `DIR/summary.json`. Files are written only
-//! after the simulation succeeded, each atomically.
+//! after the simulation succeeded, each atomically; then a `history.csv` or `events.jsonl` the
+//! scene does not write (`output`) is removed from `DIR`, where it was an earlier run's.
 
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -83,6 +84,7 @@ pub fn run(a: &SimulateArgs) -> Result<(), String> {
         wall,
     ))?;
     let text = serde_json::to_string_pretty(&summary).map_err(|e| e.to_string())?;
+    crate::output::remove_unwritten(out, &scene.output)?;
     write_atomic(&out.join("summary.json"), format!("{text}\n").as_bytes())?;
     if let Some(p) = plot {
         chart(&scene, &outcome)?.write(p)?;
