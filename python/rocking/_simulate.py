@@ -232,6 +232,10 @@ def simulate(scene, base=None):
     :class:`rocking.RockingError` naming the field.
     """
     if isinstance(scene, (str, os.PathLike)):
+        if base is not None:
+            # It was ignored: a file's record paths start at the file.
+            raise TypeError("base: applies to a dict scene; a scene file's record paths are "
+                            "relative to the file")
         return _result(_rocking._simulate(path=os.fspath(scene)))
     if not isinstance(scene, Mapping):
         raise TypeError(f"scene: expected a dict or the path of a scene file, got {type(scene).__name__}")

@@ -187,6 +187,13 @@ def test_a_dicts_wrong_value_is_named_by_its_field(root, change, message, monkey
     assert "line 1 column" not in str(e.value)
 
 
+def test_base_with_a_scene_file_is_refused(root):
+    """``base`` is where a dict scene's record paths start; with a scene file (whose record paths
+    start at the file) it was silently ignored."""
+    with pytest.raises(TypeError, match="base"):
+        rocking.simulate(root / "examples/scenes/column_synthetic_record.json", base=root)
+
+
 def test_zero_dimensional_arrays_are_numbers(root):
     """A 0-d numpy array is a number, as a numpy scalar is (it was a TypeError, 'iteration over a
     0-d array', from the NaN check)."""
