@@ -174,6 +174,31 @@ fn a_reversed_grid_range_is_refused_naming_both_ends() {
         ),
         (
             vec![
+                "oas",
+                "examples/records/synthetic.AT2",
+                "--size-min",
+                "10",
+                "--size-max",
+                "1",
+                "--levels",
+                "2",
+                "--sizes",
+                "2",
+            ],
+            ["--size-min (10)", "--size-max (1)"],
+        ),
+        (
+            vec![
+                "t1",
+                "examples/records/synthetic.AT2",
+                "--level-max",
+                "0.5",
+                "--single-step",
+            ],
+            ["--level-max (0.5)", "above 1"],
+        ),
+        (
+            vec![
                 "arch",
                 "oas",
                 "examples/records/synthetic.AT2",

@@ -277,8 +277,18 @@ impl Procedure {
 }
 
 impl OasGridArgs {
-    /// The OAS options of this grid with `simulation`'s settings.
-    pub fn options(&self, simulation: &SimulationArgs) -> OasOptions {
+    /// The OAS options of this grid with `simulation`'s settings; a reversed range of sizes
+    /// or levels is refused naming its arguments (the library's check said `sizes: must be
+    /// strictly decreasing`, and levels 1 … 0.5 ran).
+    pub fn options(&self, simulation: &SimulationArgs) -> Result<OasOptions, String> {
+        ascending(
+            "--size-min",
+            self.size_min,
+            "--size-max",
+            self.size_max,
+            self.sizes,
+        )?;
+        levels_from_one(self.level_max, self.levels)?;
         let mut o = OasOptions {
             slenderness: self.slenderness,
             levels: linear_levels(1.0, self.level_max, self.levels),
@@ -293,7 +303,7 @@ impl OasGridArgs {
         };
         self.procedure.apply(&mut o, self.levels, self.level_max);
         simulation.apply(&mut o.sweep);
-        o
+        Ok(o)
     }
 }
 
