@@ -115,15 +115,20 @@ pub struct Grid<'py> {
 impl Grid<'_> {
     fn options(&self, simulation: &Simulation) -> PyResult<OasOptions> {
         let levels = match count_or_values(&self.levels, "levels")? {
-            Ok(n) => linear_levels(1.0, positive("level_max", self.level_max)?, n),
+            Ok(n) => {
+                let level_max = positive("level_max", self.level_max)?;
+                crate::errors::levels_from_one(level_max, n)?;
+                linear_levels(1.0, level_max, n)
+            }
             Err(v) => v,
         };
         let sizes = match count_or_values(&self.sizes, "sizes")? {
-            Ok(n) => log_sizes(
-                positive("size_max", self.size_max)?,
-                positive("size_min", self.size_min)?,
-                n,
-            ),
+            Ok(n) => {
+                let hi = positive("size_max", self.size_max)?;
+                let lo = positive("size_min", self.size_min)?;
+                crate::errors::ascending("size_min", lo, "size_max", hi, n)?;
+                log_sizes(hi, lo, n)
+            }
             Err(v) => v,
         };
         let n_blocks = usize::try_from(self.blocks)
