@@ -119,12 +119,14 @@ fn energy_residual_is_within_a_thousandth_with_consistent_impacts() {
     }
 }
 
-/// A bad `--pga` or `--mu` is refused before any run, naming the argument (a NaN, 0 or negative
-/// value failed in the middle of the suite, after the runs of the values before it, as `target =
-/// NaN` or `invalid drum option friction`).
+/// A bad `--pga` or `--mu` (or more drums than a column can have) is refused before any run,
+/// naming the argument (a NaN, 0 or negative value failed in the middle of the suite, after the
+/// runs of the values before it, as `target = NaN`, `invalid drum option friction` or `5000
+/// blocks: …`).
 #[test]
 fn a_bad_pga_or_mu_is_refused_before_any_run() {
     for bad in [
+        "--drums=3,5000",
         "--pga=nan",
         "--pga=-1",
         "--pga=0",

@@ -251,6 +251,12 @@ pub fn run(args: &DrumsBenchArgs) -> Result<(), String> {
     if drums.contains(&0) {
         return Err("--drums: a column needs at least one drum".into());
     }
+    // Before any run (it failed in the first run of that size, as '5000 blocks: …', after the
+    // runs of the sizes before it).
+    let max = rocking::model::configuration::MAX_INTERFACES;
+    if let Some(n) = drums.iter().find(|&&n| n > max) {
+        return Err(format!("--drums: {n}: a column has at most {max} drums"));
+    }
     let shapes = args.shapes.clone().unwrap_or(shapes);
     let pgas = args.pga.clone().unwrap_or(pgas);
     let mus = args.mu.clone().unwrap_or(mus);
