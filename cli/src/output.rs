@@ -3,6 +3,44 @@
 
 use std::path::Path;
 
+/// Checks, before a long run, that [`write_atomic`] will be able to write `path` (`flag`: the
+/// argument that named it): its folder can be created and written to, and it is not a folder
+/// itself. A run of hours whose `--csv` points into `/proc` or at a folder failed at its end.
+pub fn check_writable(flag: &str, path: &Path) -> Result<(), String> {
+    if path.is_dir() {
+        return Err(format!(
+            "{flag} {}: is a folder, not a file",
+            path.display()
+        ));
+    }
+    let probe = path.with_file_name(format!(".rocking-probe-{}", std::process::id()));
+    write_atomic(&probe, b"").map_err(|e| format!("{flag}: {e}"))?;
+    let _ = std::fs::remove_file(&probe);
+    Ok(())
+}
+
+/// Removes the `history.csv` and `events.jsonl` of an earlier run from `out` when this run
+/// writes none (`output.history` / `output.events` false), after it succeeded: a folder with
+/// an old run's events beside this run's summary contradicted itself.
+pub fn remove_unwritten(out: &Path, output: &rocking::scene::OutputSpec) -> Result<(), String> {
+    for (name, written) in [
+        ("history.csv", output.history),
+        ("events.jsonl", output.events),
+    ] {
+        let path = out.join(name);
+        if written {
+            continue;
+        }
+        match std::fs::remove_file(&path) {
+            Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
+                return Err(format!("cannot remove the earlier {}: {e}", path.display()))
+            }
+            _ => {}
+        }
+    }
+    Ok(())
+}
+
 /// Writes `bytes` to `path` atomically (temporary file in the same directory, then rename).
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), String> {
     let dir = path

@@ -106,3 +106,115 @@ fn a_report_given_as_a_record_is_named_as_such() {
     assert!(!err.contains("JSON"), "{err}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// An arch's `--embrace` is judged in the degrees given and `--thickness-ratio` as t/R, both
+/// named (they reached the arch's own checks: `arch.embrace_angle = 6.283185307179586: must be
+/// less than 2π`, `arch.thickness = 2.5`).
+#[test]
+fn an_arch_family_out_of_range_is_named_in_its_own_units() {
+    for (command, arg, value) in [
+        ("oc", "--embrace", "360"),
+        ("oc", "--embrace", "400"),
+        ("oc", "--thickness-ratio", "2.5"),
+        ("oas", "--embrace", "360"),
+    ] {
+        let mut args = vec!["arch", command, arg, value, "--voussoirs", "4"];
+        if command == "oas" {
+            args.push("examples/records/synthetic.AT2");
+        }
+        let (code, _, err) = rocking(&args);
+        assert_eq!(code, 2, "{args:?}: {err}");
+        assert!(err.contains(arg) && err.contains(value), "{args:?}: {err}");
+        assert!(
+            !err.contains("2π") && !err.contains("arch.thickness"),
+            "{err}"
+        );
+    }
+}
+
+/// A reversed range of an OC's or an arch OAS's grid is refused, both arguments named (it ran on
+/// a reversed grid: `oc --ptp-min 5 --ptp-max 1`, levels 1 … 0.5 with `--level-max 0.5`).
+#[test]
+fn a_reversed_grid_range_is_refused_naming_both_ends() {
+    for (args, words) in [
+        (
+            vec![
+                "oc",
+                "--ptp-min",
+                "5",
+                "--ptp-max",
+                "1",
+                "--ptp-n",
+                "2",
+                "--level-n",
+                "2",
+            ],
+            ["--ptp-min (5)", "--ptp-max (1)"],
+        ),
+        (
+            vec!["oc", "--level-max", "0.5", "--ptp-n", "2", "--level-n", "2"],
+            ["--level-max (0.5)", "above 1"],
+        ),
+        (
+            vec![
+                "arch",
+                "oc",
+                "--ptp-min",
+                "5",
+                "--ptp-max",
+                "1",
+                "--voussoirs",
+                "4",
+            ],
+            ["--ptp-min (5)", "--ptp-max (1)"],
+        ),
+        (
+            vec!["arch", "oc", "--level-max", "1", "--voussoirs", "4"],
+            ["--level-max (1)", "above 1"],
+        ),
+        (
+            vec![
+                "oas",
+                "examples/records/synthetic.AT2",
+                "--size-min",
+                "10",
+                "--size-max",
+                "1",
+                "--levels",
+                "2",
+                "--sizes",
+                "2",
+            ],
+            ["--size-min (10)", "--size-max (1)"],
+        ),
+        (
+            vec![
+                "t1",
+                "examples/records/synthetic.AT2",
+                "--level-max",
+                "0.5",
+                "--single-step",
+            ],
+            ["--level-max (0.5)", "above 1"],
+        ),
+        (
+            vec![
+                "arch",
+                "oas",
+                "examples/records/synthetic.AT2",
+                "--level-min",
+                "5",
+                "--level-max",
+                "2",
+                "--voussoirs",
+                "4",
+            ],
+            ["--level-min (5)", "--level-max (2)"],
+        ),
+    ] {
+        let (code, out, err) = rocking(&args);
+        assert_ne!(code, 0, "{args:?} accepted: {out}");
+        assert!(words.iter().all(|w| err.contains(w)), "{args:?}: {err}");
+        assert!(out.is_empty(), "{args:?} ran: {out}");
+    }
+}

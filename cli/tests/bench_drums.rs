@@ -118,3 +118,106 @@ fn energy_residual_is_within_a_thousandth_with_consistent_impacts() {
         assert_eq!(r.len(), 22, "no refine columns without --energy-tol: {r:?}");
     }
 }
+
+/// A bad `--pga` or `--mu` (or more drums than a column can have) is refused before any run,
+/// naming the argument (a NaN, 0 or negative value failed in the middle of the suite, after the
+/// runs of the values before it, as `target = NaN`, `invalid drum option friction` or `5000
+/// blocks: …`).
+#[test]
+fn a_bad_pga_or_mu_is_refused_before_any_run() {
+    for bad in [
+        "--drums=3,5000",
+        "--pga=nan",
+        "--pga=-1",
+        "--pga=0",
+        "--pga=4,inf",
+        "--mu=nan",
+        "--mu=0",
+        "--mu=0.5,-1",
+    ] {
+        let run = common::run([
+            "bench",
+            "drums",
+            "--records",
+            "examples/records",
+            "--drums",
+            "1",
+            "--shapes",
+            "1x10",
+            "--threads",
+            "1",
+            bad,
+        ]);
+        let arg = bad.split('=').next().unwrap();
+        assert!(!run.ok, "{bad} accepted: {}", run.stdout);
+        assert!(run.stderr.contains(arg), "{bad}: {}", run.stderr);
+        assert!(
+            !run.stdout.contains("How the runs ended"),
+            "{bad} ran: {}",
+            run.stdout
+        );
+    }
+    let run = common::run([
+        "bench",
+        "drums",
+        "--records",
+        "examples/records",
+        "--drums",
+        "1",
+        "--shapes",
+        "1x10",
+        "--threads",
+        "1",
+        "--pga",
+        "4",
+        "--mu",
+        "inf",
+    ]);
+    assert!(run.ok, "--mu inf (no sliding): {}", run.stderr);
+}
+
+/// An output that cannot be written is refused before the runs (a suite of hours wrote its
+/// `--csv` or `--out` only at the end, and failed there).
+#[test]
+fn an_unwritable_output_is_refused_before_any_run() {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("bench_drums_unwritable");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let folder = dir.to_string_lossy().into_owned();
+    for (flag, path) in [
+        ("--csv", "/proc/rocking/runs.csv"),
+        ("--out", "/proc/rocking/report.md"),
+        ("--csv", folder.as_str()),
+    ] {
+        let run = common::run([
+            "bench",
+            "drums",
+            "--records",
+            "examples/records",
+            "--drums",
+            "1",
+            "--shapes",
+            "1x10",
+            "--pga",
+            "4",
+            "--mu",
+            "0.5",
+            "--threads",
+            "1",
+            flag,
+            path,
+        ]);
+        assert!(!run.ok, "{flag} {path} accepted");
+        assert!(run.stderr.contains(flag), "{flag} {path}: {}", run.stderr);
+        assert!(
+            !run.stdout.contains("How the runs ended"),
+            "{flag} {path} ran: {}",
+            run.stdout
+        );
+    }
+    assert_eq!(
+        std::fs::read_dir(&dir).unwrap().count(),
+        0,
+        "a probe was left behind"
+    );
+}

@@ -118,9 +118,10 @@ class Record:
     def __len__(self) -> int: ...
 
 def read_record(
-    path: Union[str, "PathLike[str]"], dt: Optional[float] = None, units: str = "m/s2"
+    path: Union[str, "PathLike[str]"], dt: Optional[float] = None, units: Optional[str] = None
 ) -> Record:
-    """A record from a PEER ``.AT2`` file (in g) or plain text (``units``: m/s2, g, cm/s2)."""
+    """A record from a PEER ``.AT2`` file (in g, its own step: no ``dt``, ``units`` only "g")
+    or plain text (``units``: m/s2 (default), g, cm/s2)."""
 
 class Pulse:
     """A pulse-type ground acceleration (thesis Fig. 6, 8)."""

@@ -196,6 +196,8 @@ def _json_value(x):
 
 def _check_finite(value, path):
     """A RockingError naming the field of the first NaN or infinity (JSON has none)."""
+    if isinstance(value, np.ndarray) and value.ndim == 0:
+        value = value[()]  # a 0-d array is its number (json.dumps writes it as one)
     if isinstance(value, Mapping):
         for k, v in value.items():
             _check_finite(v, f"{path}.{k}" if path else str(k))
@@ -230,6 +232,10 @@ def simulate(scene, base=None):
     :class:`rocking.RockingError` naming the field.
     """
     if isinstance(scene, (str, os.PathLike)):
+        if base is not None:
+            # It was ignored: a file's record paths start at the file.
+            raise TypeError("base: applies to a dict scene; a scene file's record paths are "
+                            "relative to the file")
         return _result(_rocking._simulate(path=os.fspath(scene)))
     if not isinstance(scene, Mapping):
         raise TypeError(f"scene: expected a dict or the path of a scene file, got {type(scene).__name__}")

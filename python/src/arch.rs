@@ -42,6 +42,22 @@ fn count(name: &str, n: i64) -> PyResult<usize> {
 impl Family {
     /// The sweep options, as the CLI's `ArchFamilyArgs::options`.
     fn options(&self) -> PyResult<ArchSweepOptions> {
+        // Judged as given, in degrees and as t/R (the arch's own checks name `arch.embrace_angle`
+        // in radians and `arch.thickness`).
+        if !(self.embrace > 0.0 && self.embrace < 360.0) {
+            return Err(value_error(format!(
+                "embrace = {}: must be greater than 0 and less than 360 degrees (a full ring has \
+                 no abutments)",
+                self.embrace
+            )));
+        }
+        if !(self.thickness_ratio > 0.0 && self.thickness_ratio < 2.0) {
+            return Err(value_error(format!(
+                "thickness_ratio = {}: must be greater than 0 and less than 2 (the intrados \
+                 radius R − t/2 must be positive)",
+                self.thickness_ratio
+            )));
+        }
         let mut o = ArchSweepOptions {
             shape: ArchShape {
                 thickness_ratio: positive("thickness_ratio", self.thickness_ratio)?,
@@ -89,6 +105,7 @@ pub fn _arch_oas<'py>(
         positive("level_max", level_max)?,
     );
     let level_n = count("level_n", level_n)?;
+    crate::errors::ascending("level_min", level_min, "level_max", level_max, level_n)?;
     let t1 = t1.map(|t| positive("t1", t)).transpose()?;
     let (record, _) = record_of(record)?;
     let o = ArchOasOptions {
@@ -150,6 +167,8 @@ pub fn _arch_oc<'py>(
     let ptp_n = count("ptp_n", ptp_n)?;
     let level_max = positive("level_max", level_max)?;
     let level_n = count("level_n", level_n)?;
+    crate::errors::ascending("ptp_min", ptp_min, "ptp_max", ptp_max, ptp_n)?;
+    crate::errors::levels_from_one(level_max, level_n)?;
     let sim = &options.simulation;
     let onset =
         spectra::arch_onset(&options.shape, sim.gravity, &sim.model).map_err(spectra_error)?;

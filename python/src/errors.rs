@@ -75,3 +75,24 @@ pub fn error_codes() -> Vec<(&'static str, i32)> {
 pub fn positive(name: &str, v: f64) -> PyResult<f64> {
     rocking::validate::positive(name, v).map_err(value_error)
 }
+
+/// A grid of `n` points from `lo` to `hi` runs upwards (a reversed range ran on a reversed grid),
+/// both named, as the CLI's `sweep::ascending`.
+pub fn ascending(lo_name: &str, lo: f64, hi_name: &str, hi: f64, n: usize) -> PyResult<()> {
+    if n > 1 && lo >= hi {
+        return Err(value_error(format!(
+            "{lo_name} = {lo}: must be below {hi_name} ({hi})"
+        )));
+    }
+    Ok(())
+}
+
+/// Levels linear from 1 to `level_max`: it is above 1, as the CLI's `sweep::levels_from_one`.
+pub fn levels_from_one(level_max: f64, n: usize) -> PyResult<()> {
+    if n > 1 && level_max <= 1.0 {
+        return Err(value_error(format!(
+            "level_max = {level_max}: must be above 1 (the levels run linearly from 1)"
+        )));
+    }
+    Ok(())
+}

@@ -126,15 +126,34 @@ impl Record {
 /// Reads a ground-acceleration record: PEER ``.AT2`` (by extension, any case; in g, converted
 /// to m/s²) or plain text (one column of accelerations with ``dt``, or two columns ``t a``;
 /// ``units``: ``"m/s2"`` (default), ``"g"`` or ``"cm/s2"``). The record is named after the file.
+/// An ``.AT2`` file is in g with its own step: ``dt`` or other ``units`` for one are refused.
 #[pyfunction]
-#[pyo3(signature = (path, dt = None, units = "m/s2"))]
+#[pyo3(signature = (path, dt = None, units = None))]
 pub fn read_record(
     py: Python<'_>,
     path: PathBuf,
     dt: Option<f64>,
-    units: &str,
+    units: Option<&str>,
 ) -> PyResult<Record> {
-    let scale = match units {
+    let is_at2 = path
+        .extension()
+        .is_some_and(|e| e.to_string_lossy().eq_ignore_ascii_case("at2"));
+    if is_at2 {
+        // They were ignored: a record in m/s² under an .AT2 name read 9.81 times too strong.
+        if let Some(dt) = dt {
+            return Err(value_error(format!(
+                "dt = {dt}: a PEER .AT2 record gives its own step (DT in its header); dt is for \
+                 plain-text records of one column"
+            )));
+        }
+        if let Some(u) = units.filter(|u| *u != "g") {
+            return Err(value_error(format!(
+                "units = {u:?}: a PEER .AT2 record is in g (units \"g\" or none); other units \
+                 are for plain-text records"
+            )));
+        }
+    }
+    let scale = match units.unwrap_or("m/s2") {
         "m/s2" | "m/s^2" => 1.0,
         "g" => GRAVITY,
         "cm/s2" | "cm/s^2" | "gal" => 0.01,

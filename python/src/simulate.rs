@@ -25,6 +25,20 @@ use crate::errors::value_error;
 use crate::ground::Record;
 use crate::json::to_python;
 
+/// `message` without serde's trailing ` at line L column C`.
+fn without_position(message: &str) -> &str {
+    match message.rsplit_once(" at line ") {
+        Some((head, tail))
+            if tail
+                .split_once(" column ")
+                .is_some_and(|(l, c)| l.parse::<u64>().is_ok() && c.parse::<u64>().is_ok()) =>
+        {
+            head
+        }
+        _ => message,
+    }
+}
+
 /// Runs a scene file (`path`) or a scene given as JSON text (`text`, record paths relative to
 /// `base`, titled `name` unless it has a title). `record`, if given, replaces the scene's
 /// excitation (a `Record` object, which the JSON schema can only name by path). Returns a dict:
@@ -48,8 +62,10 @@ pub fn _simulate<'py>(
             (s, Some(p.display().to_string()))
         }
         (None, Some(t)) => {
+            // The line and column serde gives are those of the JSON the package wrote from the
+            // user's dict: the field's path (`scene::parse`) is what locates the mistake.
             let spec: SceneSpec =
-                serde_json::from_str(t).map_err(|e| value_error(e.to_string()))?;
+                scene::parse(t).map_err(|e| value_error(without_position(&e.0)))?;
             let base = base.unwrap_or_else(|| PathBuf::from("."));
             let s = scene::build_any(spec, &base, name.unwrap_or("scene"))
                 .map_err(|e| value_error(e.to_string()))?;

@@ -115,15 +115,20 @@ pub struct Grid<'py> {
 impl Grid<'_> {
     fn options(&self, simulation: &Simulation) -> PyResult<OasOptions> {
         let levels = match count_or_values(&self.levels, "levels")? {
-            Ok(n) => linear_levels(1.0, positive("level_max", self.level_max)?, n),
+            Ok(n) => {
+                let level_max = positive("level_max", self.level_max)?;
+                crate::errors::levels_from_one(level_max, n)?;
+                linear_levels(1.0, level_max, n)
+            }
             Err(v) => v,
         };
         let sizes = match count_or_values(&self.sizes, "sizes")? {
-            Ok(n) => log_sizes(
-                positive("size_max", self.size_max)?,
-                positive("size_min", self.size_min)?,
-                n,
-            ),
+            Ok(n) => {
+                let hi = positive("size_max", self.size_max)?;
+                let lo = positive("size_min", self.size_min)?;
+                crate::errors::ascending("size_min", lo, "size_max", hi, n)?;
+                log_sizes(hi, lo, n)
+            }
             Err(v) => v,
         };
         let n_blocks = usize::try_from(self.blocks)
@@ -326,19 +331,20 @@ pub fn _oc<'py>(
     let (mono_p, mono_a_p_min) = (block.frequency_parameter(g), block.a_p_min(g));
     // As the CLI: p t_p log-spaced ascending, levels linear from 1.
     let ptp: Vec<f64> = match count_or_values(&ptp, "ptp")? {
-        Ok(n) => log_sizes(
-            positive("ptp_max", ptp_max)?,
-            positive("ptp_min", ptp_min)?,
-            n,
-        )
-        .into_iter()
-        .rev()
-        .collect(),
+        Ok(n) => {
+            let (lo, hi) = (positive("ptp_min", ptp_min)?, positive("ptp_max", ptp_max)?);
+            crate::errors::ascending("ptp_min", lo, "ptp_max", hi, n)?;
+            log_sizes(hi, lo, n).into_iter().rev().collect()
+        }
         Err(v) => v,
     };
     let t_p: Vec<f64> = ptp.iter().map(|x| x / mono_p).collect();
     let levels = match count_or_values(&levels, "levels")? {
-        Ok(n) => linear_levels(1.0, positive("level_max", level_max)?, n),
+        Ok(n) => {
+            let level_max = positive("level_max", level_max)?;
+            crate::errors::levels_from_one(level_max, n)?;
+            linear_levels(1.0, level_max, n)
+        }
         Err(v) => v,
     };
     let a_p: Vec<f64> = levels.iter().map(|l| l * mono_a_p_min).collect();

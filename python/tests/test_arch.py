@@ -151,6 +151,7 @@ def test_ctrl_c_stops_an_arch_sweep(root):
         (dict(t1=0.0), "t1"),
         (dict(threads=0), "threads"),
         (dict(thickness_ratio=0.01), "arch"),
+        (dict(level_min=5.0, level_max=2.0), "level_min = 5: must be below level_max"),
     ],
 )
 def test_arch_oas_errors_name_the_argument(root, args, field):
@@ -168,6 +169,13 @@ def test_arch_oas_errors_name_the_argument(root, args, field):
         (dict(ptp_n=0), "ptp_n"),
         (dict(level_n=0), "level_n"),
         (dict(voussoirs=0), "voussoirs"),
+        # Judged in the degrees and the t/R given (they were `arch.embrace_angle = 6.28…: must
+        # be less than 2π` and `arch.thickness = 2.5`).
+        (dict(embrace=360.0), "embrace = 360: must be greater than 0"),
+        (dict(thickness_ratio=2.5), "thickness_ratio = 2.5"),
+        # A reversed grid range (it ran on the reversed grid), as `arch oc`.
+        (dict(ptp_min=5.0, ptp_max=1.0), "ptp_min = 5: must be below ptp_max"),
+        (dict(level_max=0.5), "level_max = 0.5: must be above 1"),
     ],
 )
 def test_arch_oc_errors_name_the_argument(args, field):

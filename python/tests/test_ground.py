@@ -91,3 +91,20 @@ def test_pulses():
     assert mp.to_dict()["type"] == "mavroeidis_papageorgiou"
     assert rocking.half_sine(1.0, 1.0).scaled(-2.0).amplitude == -2.0
     assert "half sine" in repr(hs)
+
+
+def test_an_at2_record_takes_no_step_nor_other_units(root, tmp_path):
+    """A PEER .AT2 file is in g with its own step: ``dt`` or ``units`` other than "g" given for
+    one were ignored (a record in m/s2 under an .AT2 name read 9.81 times too strong)."""
+    at2 = root / "examples/records/synthetic.AT2"
+    for kwargs, field in [(dict(units="m/s2"), "units"), (dict(units="cm/s2"), "units"), (dict(dt=0.005), "dt")]:
+        with pytest.raises(rocking.RockingError, match=f"{field} = .*AT2") as e:
+            rocking.read_record(at2, **kwargs)
+        assert e.value.code is None
+    g = rocking.read_record(at2, units="g")
+    assert g.pga == rocking.read_record(at2).pga and g.dt == 0.01
+    # Any case of the extension is an .AT2 (as the reader decides).
+    lower = tmp_path / "rec.at2"
+    lower.write_bytes(at2.read_bytes())
+    with pytest.raises(rocking.RockingError, match="units"):
+        rocking.read_record(lower, units="m/s2")

@@ -164,6 +164,51 @@ def test_errors_name_the_field(root, change, field):
         rocking.simulate(scene)
 
 
+@pytest.mark.parametrize(
+    "change, message",
+    [
+        ({"impacts": 2.0}, "impacts: invalid type: floating point `2.0`, expected u32"),
+        ({"gravity": "9.81"}, "gravity: invalid type"),
+        ({"blocks": [{"width": 0.1, "height": True, "mass": 16}]}, r"blocks\[0\].height: invalid type"),
+        ({"integrator": {"type": "wilson", "theta": 1.4, "gamma": 1}}, "integrator: .*no other field"),
+        ({"excitation": {"type": "none", "amplitude": 3}}, "excitation: unknown field `amplitude`"),
+        ({"excitation": {"type": "record", "path": "examples/records/synthetic.AT2", "units": "m/s2"}},
+         "excitation.units: .*in g"),
+    ],
+)
+def test_a_dicts_wrong_value_is_named_by_its_field(root, change, message, monkeypatch):
+    """A value of the wrong type in a dict scene names its field, without the line and column of
+    the JSON text the package wrote from the dict (which the user never saw)."""
+    monkeypatch.chdir(root)
+    scene = json.loads((root / "examples/scenes/two_block_free_rocking.json").read_text())
+    scene.update(change)
+    with pytest.raises(rocking.RockingError, match=message) as e:
+        rocking.simulate(scene)
+    assert "line 1 column" not in str(e.value)
+
+
+def test_base_with_a_scene_file_is_refused(root):
+    """``base`` is where a dict scene's record paths start; with a scene file (whose record paths
+    start at the file) it was silently ignored."""
+    with pytest.raises(TypeError, match="base"):
+        rocking.simulate(root / "examples/scenes/column_synthetic_record.json", base=root)
+
+
+def test_zero_dimensional_arrays_are_numbers(root):
+    """A 0-d numpy array is a number, as a numpy scalar is (it was a TypeError, 'iteration over a
+    0-d array', from the NaN check)."""
+    scene = json.loads((root / "examples/scenes/two_block_free_rocking.json").read_text())
+    scene.update(duration=0.2, friction=0.5, scheme="moreau")
+    plain = rocking.simulate(scene)
+    scene.update(duration=np.array(0.2), friction=np.array(0.5))
+    r = rocking.simulate(scene)
+    assert r.summary["stop_reason"] == plain.summary["stop_reason"]
+    assert np.array_equal(r.block_rotations, plain.block_rotations) and len(r.t) > 100
+    scene.update(friction=np.array(float("nan")))
+    with pytest.raises(rocking.RockingError, match="friction = nan"):
+        rocking.simulate(scene)
+
+
 def test_missing_fields_files_and_types(root, tmp_path):
     with pytest.raises(rocking.RockingError, match="missing field `duration`"):
         rocking.simulate({"blocks": [{"width": 0.2, "height": 1, "mass": 1}], "excitation": {"type": "none"},

@@ -167,6 +167,15 @@ def test_other_errors(root, tmp_path):
         rocking.oc("square")
     with pytest.raises(rocking.RockingError, match="size"):
         rocking.oc(size=-1.0)
+    # A reversed grid range (it ran on the reversed grid), as `rocking oc`.
+    with pytest.raises(rocking.RockingError, match="ptp_min = 5: must be below ptp_max"):
+        rocking.oc(ptp_min=5.0, ptp_max=1.0, ptp=2, levels=2)
+    with pytest.raises(rocking.RockingError, match="level_max = 0.5: must be above 1"):
+        rocking.oc(level_max=0.5, ptp=2, levels=2)
+    with pytest.raises(rocking.RockingError, match="size_min = 10: must be below size_max"):
+        rocking.oas(root / RECORD, size_min=10.0, size_max=1.0, levels=2, sizes=2)
+    with pytest.raises(rocking.RockingError, match="level_max = 0.5: must be above 1"):
+        rocking.oas(root / RECORD, level_max=0.5, levels=2, sizes=2)
 
 
 def test_ctrl_c_stops_a_sweep(root):

@@ -82,7 +82,7 @@ pub(super) fn build(
     name: &str,
 ) -> Result<LoopScene, SceneError> {
     // Settings of the column drivers have no meaning here: name them rather than ignore them.
-    let column_only: [(&str, bool); 10] = [
+    let column_only: [(&str, bool); 12] = [
         ("blocks", !spec.blocks.is_empty()),
         ("initial_angles", spec.initial_angles.is_some()),
         ("impacts", spec.impacts != 1),
@@ -93,6 +93,8 @@ pub(super) fn build(
         ("on_tension", spec.on_tension.is_some()),
         ("scheme", spec.scheme.is_some()),
         ("continue_until_fallen", spec.continue_until_fallen),
+        ("energy_tolerance", spec.energy_tolerance.is_some()),
+        ("energy_consistent", spec.energy_consistent),
     ];
     if let Some((field, _)) = column_only.iter().find(|(_, set)| *set) {
         return Err(err(field, "not used by a closed chain (arch, colonnade)"));
@@ -130,6 +132,19 @@ pub(super) fn build(
             (LoopShape::Arch(arch), chain)
         }
         (None, Some(c)) => {
+            // The scene's own fields, named as it spells them (the frame's checks name the
+            // blocks it builds: `colonnade.left[0].mass`, and `colonnade.beam.width` for a
+            // negative span).
+            for (field, v) in [
+                ("width", c.width),
+                ("height", c.height),
+                ("column_mass", c.column_mass),
+                ("span", c.span),
+                ("beam_height", c.beam_height),
+                ("beam_mass", c.beam_mass),
+            ] {
+                crate::validate::positive(format!("colonnade.{field}"), v).map_err(invalid)?;
+            }
             let frame = CappedColonnade::frame(
                 c.width,
                 c.height,
@@ -178,10 +193,22 @@ pub(super) fn build(
             ))
         }
     };
+    let (dt, duration) = (
+        positive("dt", spec.dt)?,
+        positive("duration", spec.duration)?,
+    );
+    // The loop driver's own limit, named as a column scene names it (the driver's message
+    // printed the duration with all its digits: 300 of them for 1e300 s).
+    if duration / dt > 1e10 {
+        return Err(err(
+            "dt",
+            format!("{dt}: more than 1e10 steps for the duration"),
+        ));
+    }
     let options = LoopOptions {
         gravity: positive("gravity", spec.gravity.unwrap_or(defaults.gravity))?,
-        dt: positive("dt", spec.dt)?,
-        duration: positive("duration", spec.duration)?,
+        dt,
+        duration,
         model: ModelOptions {
             solver,
             ..ModelOptions::default()

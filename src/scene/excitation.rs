@@ -12,8 +12,9 @@ use serde::Deserialize;
 #[derive(Debug, Deserialize)]
 #[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
 pub enum ExcitationSpec {
-    /// No excitation (free rocking from `initial_angles`).
-    None,
+    /// No excitation (free rocking from `initial_angles`). A struct variant with no field, so
+    /// that a field given with it is refused (serde ignores them beside a unit variant).
+    None {},
     /// `amplitude · sin(π t / duration)` on `[0, duration]` (thesis Fig. 8a).
     HalfSine { amplitude: f64, duration: f64 },
     /// One full period of a sine; `duration` is the WHOLE period (each lobe lasts duration/2;
@@ -40,7 +41,8 @@ pub enum ExcitationSpec {
         nu: f64,
     },
     /// A recorded motion: PEER `.AT2` (in g), or plain text (one column with `dt`, or two
-    /// columns t, a) in m/s² unless `units` is "g". Scaled to `scale_to_pga` [m/s²] if given.
+    /// columns t, a) in m/s² unless `units` is "g" or "cm/s2". Scaled to `scale_to_pga` [m/s²]
+    /// if given.
     Record {
         path: PathBuf,
         #[serde(default)]
@@ -78,7 +80,7 @@ pub(super) fn excitation(spec: &ExcitationSpec, base: &Path) -> Result<Excitatio
         }
     };
     match spec {
-        ExcitationSpec::None | ExcitationSpec::Record { .. } => {}
+        ExcitationSpec::None {} | ExcitationSpec::Record { .. } => {}
         ExcitationSpec::HalfSine {
             amplitude,
             duration,
@@ -125,7 +127,7 @@ pub(super) fn excitation(spec: &ExcitationSpec, base: &Path) -> Result<Excitatio
         return Err(err("excitation.count", "0: must be >= 1"));
     }
     match spec {
-        ExcitationSpec::None => Ok(Excitation::None),
+        ExcitationSpec::None {} => Ok(Excitation::None),
         ExcitationSpec::HalfSine {
             amplitude,
             duration,
@@ -170,6 +172,32 @@ pub(super) fn excitation(spec: &ExcitationSpec, base: &Path) -> Result<Excitatio
             } else {
                 base.join(path)
             };
+            // A PEER `.AT2` file states its own step and is in g: a `dt` or other `units` given
+            // for it would be ignored, so name them (a record in m/s² under an `.AT2` name would
+            // run 9.81 times too strong).
+            let is_at2 = full
+                .extension()
+                .is_some_and(|e| e.to_string_lossy().eq_ignore_ascii_case("at2"));
+            if is_at2 {
+                if let Some(step) = dt {
+                    return Err(err(
+                        "excitation.dt",
+                        format!(
+                            "{step}: a PEER .AT2 record gives its own step (DT in its header); \
+                             dt is for plain-text records of one column"
+                        ),
+                    ));
+                }
+                if let Some(u) = units.as_deref().filter(|u| *u != "g") {
+                    return Err(err(
+                        "excitation.units",
+                        format!(
+                            "{u:?}: a PEER .AT2 record is in g (units \"g\" or none); other \
+                             units are for plain-text records"
+                        ),
+                    ));
+                }
+            }
             let mut format = PlainFormat {
                 dt: *dt,
                 ..PlainFormat::default()
@@ -177,10 +205,12 @@ pub(super) fn excitation(spec: &ExcitationSpec, base: &Path) -> Result<Excitatio
             match units.as_deref() {
                 None | Some("m/s2") | Some("m/s^2") => {}
                 Some("g") => format = format.in_g(),
+                // As `rocking.read_record` reads them (many catalogues are in gal).
+                Some("cm/s2") | Some("cm/s^2") | Some("gal") => format.scale = 0.01,
                 Some(other) => {
                     return Err(err(
                         "excitation.units",
-                        format!("unknown units {other:?} (m/s2, g)"),
+                        format!("unknown units {other:?} (m/s2, g, cm/s2)"),
                     ))
                 }
             }

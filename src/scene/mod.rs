@@ -28,6 +28,7 @@ pub mod closed;
 mod contact;
 mod contact_outputs;
 mod excitation;
+mod json_path;
 mod loop_outputs;
 mod summary;
 use crate::contact::auto::AutoOptions;
@@ -39,6 +40,7 @@ pub use contact_outputs::{
 };
 use excitation::excitation;
 pub use excitation::ExcitationSpec;
+pub use json_path::parse;
 pub use loop_outputs::{hinges, loop_event_name, loop_events, loop_joint_angles, LoopSummary};
 pub use summary::{Energy, Summary};
 
@@ -55,9 +57,14 @@ pub struct BlockSpec {
     pub contact_width: Option<f64>,
 }
 
-/// Integrator choice: a name, or an object with parameters.
+/// Integrator choice: a name, or an object with parameters (no other field: one is refused, not
+/// ignored).
 #[derive(Debug, Deserialize)]
-#[serde(untagged)]
+#[serde(
+    untagged,
+    deny_unknown_fields,
+    expecting = "integrator: a name (\"wilson\", \"newmark\", \"rk4\", \"dop853\") or {\"type\": \"wilson\", \"theta\": θ} and no other field"
+)]
 pub enum IntegratorSpec {
     Name(String),
     Wilson {
@@ -212,8 +219,7 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
 fn read(path: &Path) -> Result<(SceneSpec, &Path), SceneError> {
     let text = std::fs::read_to_string(path)
         .map_err(|e| SceneError(format!("cannot read {}: {e}", path.display())))?;
-    let spec: SceneSpec =
-        serde_json::from_str(&text).map_err(|e| SceneError(format!("{}: {e}", path.display())))?;
+    let spec = parse(&text).map_err(|e| SceneError(format!("{}: {e}", path.display())))?;
     Ok((spec, path.parent().unwrap_or(Path::new("."))))
 }
 

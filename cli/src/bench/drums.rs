@@ -23,8 +23,8 @@ use rocking::ground::excitation::Excitation;
 use rocking::ground::records::{read_at2, Record};
 use rocking::model::column::{Block, Column};
 
-use crate::commands::sweep::{count, set_threads, Shard};
-use crate::output::write_atomic;
+use crate::commands::sweep::{count, positive, set_threads, Shard};
+use crate::output::{check_writable, write_atomic};
 use crate::progress;
 
 /// Options of `rocking bench drums`.
@@ -47,10 +47,10 @@ pub struct DrumsBenchArgs {
     #[arg(long, value_delimiter = ',', value_parser = shape)]
     pub shapes: Option<Vec<(f64, f64)>>,
     /// Peak ground accelerations (m/s²).
-    #[arg(long, value_delimiter = ',')]
+    #[arg(long, value_delimiter = ',', value_parser = positive)]
     pub pga: Option<Vec<f64>>,
-    /// Friction coefficients.
-    #[arg(long, value_delimiter = ',')]
+    /// Friction coefficients (> 0; `inf`: no sliding).
+    #[arg(long, value_delimiter = ',', value_parser = friction)]
     pub mu: Option<Vec<f64>>,
     /// Time step (s).
     #[arg(long, default_value_t = 1e-3)]
@@ -79,6 +79,18 @@ pub struct DrumsBenchArgs {
     /// Also write the report to this file.
     #[arg(long)]
     pub out: Option<PathBuf>,
+}
+
+/// A friction coefficient: a number > 0, infinity (no sliding) included; checked with the
+/// other arguments, before any run (a NaN or 0 failed in the first run of that μ, naming the
+/// scheme's option, not `--mu`).
+fn friction(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(mu) if mu > 0.0 => Ok(mu),
+        _ => Err(format!(
+            "{s}: a friction coefficient must be a number > 0 (inf: no sliding)"
+        )),
+    }
 }
 
 fn shape(s: &str) -> Result<(f64, f64), String> {
@@ -192,6 +204,11 @@ pub fn run(args: &DrumsBenchArgs) -> Result<(), String> {
     if let Some(n) = args.threads {
         set_threads(n);
     }
+    for (flag, path) in [("--csv", &args.csv), ("--out", &args.out)] {
+        if let Some(p) = path {
+            check_writable(flag, p)?;
+        }
+    }
     if !(args.dt.is_finite() && args.dt > 0.0) {
         return Err(format!("--dt: {}: must be a number > 0", args.dt));
     }
@@ -233,6 +250,12 @@ pub fn run(args: &DrumsBenchArgs) -> Result<(), String> {
     let drums = args.drums.clone().unwrap_or(drums);
     if drums.contains(&0) {
         return Err("--drums: a column needs at least one drum".into());
+    }
+    // Before any run (it failed in the first run of that size, as '5000 blocks: …', after the
+    // runs of the sizes before it).
+    let max = rocking::model::configuration::MAX_INTERFACES;
+    if let Some(n) = drums.iter().find(|&&n| n > max) {
+        return Err(format!("--drums: {n}: a column has at most {max} drums"));
     }
     let shapes = args.shapes.clone().unwrap_or(shapes);
     let pgas = args.pga.clone().unwrap_or(pgas);

@@ -50,11 +50,11 @@ impl Arch {
 /// The arch family and the runs' settings.
 #[derive(Args, Debug)]
 pub struct ArchFamilyArgs {
-    /// Thickness over radius t/R.
-    #[arg(long = "thickness-ratio", default_value_t = 0.15, value_parser = positive)]
+    /// Thickness over radius t/R (below 2: the intrados radius R − t/2 is positive).
+    #[arg(long = "thickness-ratio", default_value_t = 0.15, value_parser = thickness_ratio)]
     pub thickness_ratio: f64,
-    /// Angle of embrace [degrees] (180: semicircular).
-    #[arg(long, default_value_t = 180.0, value_parser = positive)]
+    /// Angle of embrace [degrees] (180: semicircular; below 360).
+    #[arg(long, default_value_t = 180.0, value_parser = embrace)]
     pub embrace: f64,
     /// Number of voussoirs.
     #[arg(long, default_value_t = 20, value_parser = count)]
@@ -62,6 +62,29 @@ pub struct ArchFamilyArgs {
     /// Factor on the time step rule (min(Δt_record/4, t_p/100, 1/(100 p))).
     #[arg(long = "dt-factor", default_value_t = 1.0, value_parser = positive)]
     pub dt_factor: f64,
+}
+
+/// `--embrace`: degrees in (0, 360), judged in the degrees given (the arch's own check says
+/// `arch.embrace_angle = 6.28…: must be less than 2π`, in radians the user never typed).
+fn embrace(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(e) if e > 0.0 && e < 360.0 => Ok(e),
+        _ => Err(format!(
+            "{s}: the angle of embrace must be greater than 0 and less than 360 degrees (a full \
+             ring has no abutments)"
+        )),
+    }
+}
+
+/// `--thickness-ratio`: t/R in (0, 2) (the arch's own check names `arch.thickness`).
+fn thickness_ratio(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(r) if r > 0.0 && r < 2.0 => Ok(r),
+        _ => Err(format!(
+            "{s}: t/R must be greater than 0 and less than 2 (the intrados radius R − t/2 must \
+             be positive)"
+        )),
+    }
 }
 
 impl ArchFamilyArgs {
@@ -120,6 +143,13 @@ fn run_oas(a: &ArchOasArgs) -> Result<(), String> {
             a.radius_min, a.radius_max
         ));
     }
+    super::sweep::ascending(
+        "--level-min",
+        a.level_min,
+        "--level-max",
+        a.level_max,
+        a.level_n,
+    )?;
     let record = super::sweep::read(&a.record)?;
     let options = ArchOasOptions {
         levels: linear_levels(a.level_min, a.level_max, a.level_n),
@@ -267,6 +297,8 @@ pub struct ArchOcArgs {
 }
 
 fn run_oc(a: &ArchOcArgs) -> Result<(), String> {
+    super::sweep::ascending("--ptp-min", a.ptp_min, "--ptp-max", a.ptp_max, a.ptp_n)?;
+    super::sweep::levels_from_one(a.level_max, a.level_n)?;
     let options = a.family.options();
     let sim = &options.simulation;
     let onset =

@@ -87,7 +87,7 @@ pub fn run(a: &OasArgs) -> Result<(), String> {
         }
         Some(path) => {
             let record = super::sweep::read(path)?;
-            let mut o = a.grid.options(&a.simulation);
+            let mut o = a.grid.options(&a.simulation)?;
             o.levels = a.shard.keep(&o.levels);
             let method = spectra::T1Method {
                 converge: a.converge_step.map(|tol| (tol, a.converge_halvings)),

@@ -83,6 +83,8 @@ pub struct OcArgs {
 
 /// Runs the command.
 pub fn run(a: &OcArgs) -> Result<(), String> {
+    super::sweep::ascending("--ptp-min", a.ptp_min, "--ptp-max", a.ptp_max, a.ptp_n)?;
+    super::sweep::levels_from_one(a.level_max, a.level_n)?;
     let shape = a.shape.pulse();
     let column = column_of_size(a.size, a.slenderness, a.blocks).map_err(|e| e.to_string())?;
     let mut sweep = SweepOptions::default();

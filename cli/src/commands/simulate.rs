@@ -4,7 +4,8 @@
 //!
 //! Writes `DIR/history.csv` (t, interface angles and rates, block rotations, statuses),
 //! `DIR/events.jsonl` (one JSON object per event) and `DIR/summary.json`. Files are written only
-//! after the simulation succeeded, each atomically.
+//! after the simulation succeeded, each atomically; then a `history.csv` or `events.jsonl` the
+//! scene does not write (`output`) is removed from `DIR`, where it was an earlier run's.
 
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -35,7 +36,16 @@ pub struct SimulateArgs {
 /// Runs the command.
 pub fn run(a: &SimulateArgs) -> Result<(), String> {
     let (scene_path, out, plot) = (a.scene.as_path(), a.out.as_path(), a.plot.as_deref());
-    let scene = match scene::load_any(scene_path).map_err(|e| e.to_string())? {
+    let any = scene::load_any(scene_path).map_err(|e| e.to_string())?;
+    // Before the run (it was found after it, its files written and an arch's chart drawn).
+    let history = match &any {
+        scene::AnyScene::Column(s) => s.output.history,
+        scene::AnyScene::Loop(s) => s.output.history,
+    };
+    if plot.is_some() && !history {
+        return Err("--plot needs the history (output.history must be true)".into());
+    }
+    let scene = match any {
         scene::AnyScene::Column(scene) => scene,
         scene::AnyScene::Loop(scene) => {
             return super::simulate_loop::run(&scene, scene_path, out, plot)
@@ -74,6 +84,7 @@ pub fn run(a: &SimulateArgs) -> Result<(), String> {
         wall,
     ))?;
     let text = serde_json::to_string_pretty(&summary).map_err(|e| e.to_string())?;
+    crate::output::remove_unwritten(out, &scene.output)?;
     write_atomic(&out.join("summary.json"), format!("{text}\n").as_bytes())?;
     if let Some(p) = plot {
         chart(&scene, &outcome)?.write(p)?;

@@ -74,6 +74,7 @@ pub fn run(
     let path = Some(scene_path.display().to_string());
     let summary = ContactSummary::of(scene, path, &outcome, options.dt, wall);
     let text = serde_json::to_string_pretty(&json_tree(&summary)?).map_err(|e| e.to_string())?;
+    crate::output::remove_unwritten(out, &scene.output)?;
     write_atomic(&out.join("summary.json"), format!("{text}\n").as_bytes())?;
     if let Some(p) = plot {
         let (rotations, slips) = charts(scene, &outcome)?;

@@ -56,6 +56,7 @@ pub fn run(
     let path = Some(scene_path.display().to_string());
     let summary = json_tree(&LoopSummary::of(scene, path, &outcome, wall))?;
     let text = serde_json::to_string_pretty(&summary).map_err(|e| e.to_string())?;
+    crate::output::remove_unwritten(out, &scene.output)?;
     write_atomic(&out.join("summary.json"), format!("{text}\n").as_bytes())?;
     if let Some(p) = plot {
         geometry_chart(scene, &outcome).write(p)?;

@@ -115,7 +115,7 @@ fn merged(files: &[PathBuf]) -> Result<Vec<(Oas, f64)>, String> {
 /// Runs the command.
 pub fn run(a: &SuiteArgs) -> Result<(), String> {
     let spectra = if a.merge.is_empty() {
-        let o = a.grid.options(&a.simulation);
+        let o = a.grid.options(&a.simulation)?;
         let files = a.shard.keep(&a.records);
         let bar = progress::bar((files.len() * o.levels.len()) as u64, "suite");
         let mut out = Vec::new();

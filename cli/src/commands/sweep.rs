@@ -29,6 +29,26 @@ pub fn non_negative(s: &str) -> Result<f64, String> {
     }
 }
 
+/// A grid of `n` points from `lo` (`lo_flag`) to `hi` (`hi_flag`) runs upwards: a reversed
+/// range ran, silently, on a reversed grid (`oc --ptp-min 5 --ptp-max 1`).
+pub fn ascending(lo_flag: &str, lo: f64, hi_flag: &str, hi: f64, n: usize) -> Result<(), String> {
+    if n > 1 && lo >= hi {
+        return Err(format!("{lo_flag} ({lo}) must be below {hi_flag} ({hi})"));
+    }
+    Ok(())
+}
+
+/// Levels linear from 1 to `--level-max`: it is above 1 (0.5 gave the levels 1 … 0.5, below
+/// the level at which a block starts to rock).
+pub fn levels_from_one(level_max: f64, n: usize) -> Result<(), String> {
+    if n > 1 && level_max <= 1.0 {
+        return Err(format!(
+            "--level-max ({level_max}) must be above 1 (the levels run linearly from 1)"
+        ));
+    }
+    Ok(())
+}
+
 /// A count ≥ 1.
 pub fn count(s: &str) -> Result<usize, String> {
     match s.parse::<usize>() {
@@ -257,8 +277,18 @@ impl Procedure {
 }
 
 impl OasGridArgs {
-    /// The OAS options of this grid with `simulation`'s settings.
-    pub fn options(&self, simulation: &SimulationArgs) -> OasOptions {
+    /// The OAS options of this grid with `simulation`'s settings; a reversed range of sizes
+    /// or levels is refused naming its arguments (the library's check said `sizes: must be
+    /// strictly decreasing`, and levels 1 … 0.5 ran).
+    pub fn options(&self, simulation: &SimulationArgs) -> Result<OasOptions, String> {
+        ascending(
+            "--size-min",
+            self.size_min,
+            "--size-max",
+            self.size_max,
+            self.sizes,
+        )?;
+        levels_from_one(self.level_max, self.levels)?;
         let mut o = OasOptions {
             slenderness: self.slenderness,
             levels: linear_levels(1.0, self.level_max, self.levels),
@@ -273,7 +303,7 @@ impl OasGridArgs {
         };
         self.procedure.apply(&mut o, self.levels, self.level_max);
         simulation.apply(&mut o.sweep);
-        o
+        Ok(o)
     }
 }
 

@@ -146,7 +146,7 @@ fn governing(
 /// Runs the command.
 pub fn run(a: &T1Args) -> Result<(), String> {
     let rows: Vec<Row> = if a.merge.is_empty() {
-        let o = a.grid.options(&a.simulation);
+        let o = a.grid.options(&a.simulation)?;
         let method = a.method();
         method.check().map_err(|e| e.to_string())?;
         let files = a.shard.keep(&a.records);
@@ -196,7 +196,7 @@ pub fn run(a: &T1Args) -> Result<(), String> {
             }
         }
         if a.explain {
-            let o = a.grid.options(&a.simulation);
+            let o = a.grid.options(&a.simulation)?;
             let procedure =
                 (a.grid.procedure != Procedure::Converged).then(|| a.grid.procedure.name());
             for r in &mut rows {
