@@ -205,6 +205,39 @@ fn an_arch_scene_of_too_many_steps_names_dt() {
     assert!(run.stderr.len() < 200, "{}", run.stderr);
 }
 
+/// A zero duration is a run of no step for an arch as for a column (an arch scene refused it as
+/// "greater than zero"); a negative one is refused for both, naming `duration`.
+#[test]
+fn a_zero_duration_runs_for_an_arch_as_for_a_column() {
+    let arch = r#""arch": {"radius": 5, "thickness": 0.75, "voussoirs": 8}, "excitation": {"type": "none"}"#;
+    let column =
+        r#""blocks": [{"width": 1, "height": 2, "mass": 5000}], "excitation": {"type": "none"}"#;
+    for (name, body) in [("arch", arch), ("column", column)] {
+        let dir = fresh_dir(&format!("zero_duration_{name}"));
+        std::fs::write(
+            dir.join("scene.json"),
+            format!(r#"{{{body}, "duration": 0, "dt": 0.001}}"#),
+        )
+        .unwrap();
+        let run = common::run([
+            "simulate".as_ref(),
+            dir.join("scene.json").as_os_str(),
+            "--out".as_ref(),
+            dir.join("out").as_os_str(),
+        ]);
+        assert!(run.ok, "{name}: {}", run.stderr);
+        let summary = std::fs::read_to_string(dir.join("out/summary.json")).unwrap();
+        assert!(summary.contains("\"t_end\": 0.0"), "{name}: {summary}");
+        refused(
+            &format!("negative_duration_{name}"),
+            &[(
+                format!(r#"{{{body}, "duration": -1, "dt": 0.001}}"#),
+                &["duration"],
+            )],
+        );
+    }
+}
+
 /// A colonnade's fields are named as the scene spells them: a negative `column_mass` was
 /// `colonnade.left[0].mass` and a negative `span` `colonnade.beam.width: 0.0` (the beam the
 /// frame builds, `span + width` long).

@@ -193,10 +193,16 @@ pub(super) fn build(
             ))
         }
     };
-    let (dt, duration) = (
-        positive("dt", spec.dt)?,
-        positive("duration", spec.duration)?,
-    );
+    // A zero duration is a run of no step, as for a column scene (the driver takes it).
+    let duration = if spec.duration.is_finite() && spec.duration >= 0.0 {
+        spec.duration
+    } else {
+        return Err(err(
+            "duration",
+            format!("{}: must be a finite number, zero or more", spec.duration),
+        ));
+    };
+    let dt = positive("dt", spec.dt)?;
     // The loop driver's own limit, named as a column scene names it (the driver's message
     // printed the duration with all its digits: 300 of them for 1e300 s).
     if duration / dt > 1e10 {
