@@ -218,3 +218,89 @@ fn a_reversed_grid_range_is_refused_naming_both_ends() {
         assert!(out.is_empty(), "{args:?} ran: {out}");
     }
 }
+
+/// A plain-text record in other units or of one column is read with `--units` and `--record-dt`
+/// by every command that takes records (`oas`, `t1`, `suite`, `tp`, `arch oas`): the bundled
+/// `.AT2` written as one column of g gives the same record; an `.AT2` refuses both options (it
+/// states its units and step), and a one-column file without a step names `--record-dt`.
+#[test]
+fn a_plain_text_record_takes_its_units_and_step() {
+    let root = std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/.."));
+    let at2 = std::fs::read_to_string(root.join("examples/records/synthetic.AT2")).unwrap();
+    let values: Vec<&str> = at2
+        .lines()
+        .skip(4)
+        .flat_map(str::split_whitespace)
+        .collect();
+    let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("record_format");
+    std::fs::create_dir_all(&dir).unwrap();
+    let text = dir.join("synthetic.txt");
+    std::fs::write(&text, values.join("\n")).unwrap();
+    let text = text.to_str().unwrap();
+    let row = |out: &str| {
+        out.lines()
+            .nth(1)
+            .unwrap_or("")
+            .split_whitespace()
+            .skip(1)
+            .collect::<Vec<_>>()
+            .join(" ")
+    };
+    let (code, at2_out, err) = rocking(&["tp", "examples/records/synthetic.AT2"]);
+    assert_eq!(code, 0, "{err}");
+    let (code, text_out, err) = rocking(&["tp", text, "--units", "g", "--record-dt", "0.01"]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(row(&text_out), row(&at2_out));
+    let (code, gal_out, _) = rocking(&["tp", text, "--units", "cm/s2", "--record-dt", "0.01"]);
+    assert_eq!(code, 0);
+    assert_ne!(row(&gal_out), row(&at2_out));
+    for (args, words) in [
+        (vec!["tp", text], "--record-dt"),
+        (
+            vec!["tp", "examples/records/synthetic.AT2", "--units", "m/s2"],
+            "--units",
+        ),
+        (
+            vec![
+                "tp",
+                "examples/records/synthetic.AT2",
+                "--record-dt",
+                "0.01",
+            ],
+            "--record-dt",
+        ),
+        (
+            vec!["oas", "examples/records/synthetic.AT2", "--units", "cm/s2"],
+            "--units",
+        ),
+        (
+            vec![
+                "t1",
+                "examples/records/synthetic.AT2",
+                "--record-dt",
+                "0.02",
+            ],
+            "--record-dt",
+        ),
+        (
+            vec!["suite", "examples/records/synthetic.AT2", "--units", "m/s2"],
+            "--units",
+        ),
+        (
+            vec![
+                "arch",
+                "oas",
+                "examples/records/synthetic.AT2",
+                "--units",
+                "m/s2",
+            ],
+            "--units",
+        ),
+        (vec!["tp", text, "--record-dt", "0"], "--record-dt"),
+        (vec!["tp", text, "--units", "furlongs"], "--units"),
+    ] {
+        let (code, _, err) = rocking(&args);
+        assert_ne!(code, 0, "{args:?} ran");
+        assert!(err.contains(words), "{args:?}: {err}");
+    }
+}

@@ -105,6 +105,8 @@ impl ArchFamilyArgs {
 /// Options of `rocking arch oas`.
 #[derive(Args, Debug)]
 pub struct ArchOasArgs {
+    #[command(flatten)]
+    pub record_format: super::sweep::RecordFormatArgs,
     /// The record (.AT2 in g, or plain text in m/s²).
     pub record: PathBuf,
     #[command(flatten)]
@@ -150,7 +152,7 @@ fn run_oas(a: &ArchOasArgs) -> Result<(), String> {
         a.level_max,
         a.level_n,
     )?;
-    let record = super::sweep::read(&a.record)?;
+    let record = super::sweep::read(&a.record, &a.record_format)?;
     let options = ArchOasOptions {
         levels: linear_levels(a.level_min, a.level_max, a.level_n),
         sizes: log_sizes(a.radius_max, a.radius_min, a.radius_n),

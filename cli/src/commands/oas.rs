@@ -17,6 +17,8 @@ use crate::progress;
 /// Options of `rocking oas`.
 #[derive(Args, Debug)]
 pub struct OasArgs {
+    #[command(flatten)]
+    pub record_format: super::sweep::RecordFormatArgs,
     /// The record (.AT2 in g, or plain text in m/s²).
     #[arg(required_unless_present_any = ["merge", "overlay"])]
     pub record: Option<PathBuf>,
@@ -86,7 +88,7 @@ pub fn run(a: &OasArgs) -> Result<(), String> {
             }
         }
         Some(path) => {
-            let record = super::sweep::read(path)?;
+            let record = super::sweep::read(path, &a.record_format)?;
             let mut o = a.grid.options(&a.simulation)?;
             o.levels = a.shard.keep(&o.levels);
             let method = spectra::T1Method {

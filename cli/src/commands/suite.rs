@@ -21,6 +21,8 @@ use crate::progress;
 /// Options of `rocking suite`.
 #[derive(Args, Debug)]
 pub struct SuiteArgs {
+    #[command(flatten)]
+    pub record_format: super::sweep::RecordFormatArgs,
     /// The records of the suite (.AT2 in g, or plain text in m/s²).
     #[arg(required_unless_present = "merge")]
     pub records: Vec<PathBuf>,
@@ -121,7 +123,7 @@ pub fn run(a: &SuiteArgs) -> Result<(), String> {
         let mut out = Vec::new();
         for f in files {
             bar.set_message(f.display().to_string());
-            let record = super::sweep::read(&f)?;
+            let record = super::sweep::read(&f, &a.record_format)?;
             if out
                 .iter()
                 .any(|(p, _): &(Oas, f64)| p.record == record.name)

@@ -6,7 +6,7 @@ use std::str::FromStr;
 
 use clap::{Args, ValueEnum};
 use rocking::driver::{EventLocator, Integrator};
-use rocking::ground::records::{read_record, PlainFormat, Record};
+use rocking::ground::records::{read_record, PlainFormat, Record, RecordError};
 use rocking::spectra::{linear_levels, log_sizes, OasOptions, SizeSearch, SweepOptions, TimeStep};
 
 /// A finite number > 0.
@@ -108,10 +108,76 @@ pub fn set_threads(n: usize) {
         .build_global();
 }
 
-/// Reads a record (PEER `.AT2`, or plain text in m/s²). A `.json` file that does not parse as a
-/// record is most likely a report given where a record was expected: the error says so.
-pub fn read(path: &Path) -> Result<Record, String> {
-    read_record(path, &PlainFormat::default()).map_err(|e| {
+/// Units of a plain-text record.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum RecordUnits {
+    /// m/s² (the default).
+    #[value(name = "m/s2")]
+    MetresPerSecondSquared,
+    /// In g (9.81 m/s²).
+    G,
+    /// cm/s² (gal).
+    #[value(name = "cm/s2", alias = "gal")]
+    CentimetresPerSecondSquared,
+}
+
+/// How a plain-text record is read: its units and, for one column, its step (a PEER `.AT2`
+/// states both: in g, with its own DT).
+#[derive(Args, Clone, Debug, Default)]
+pub struct RecordFormatArgs {
+    /// Units of a plain-text record (an .AT2 is in g)
+    #[arg(long, value_enum, value_name = "UNITS")]
+    pub units: Option<RecordUnits>,
+    /// Time step of a one-column plain-text record [s] (with two columns it must agree with the
+    /// time column; an .AT2 states its own)
+    #[arg(long, value_parser = positive, value_name = "SECONDS")]
+    pub record_dt: Option<f64>,
+}
+
+impl RecordFormatArgs {
+    /// The plain-text format, or an error naming the option an `.AT2` record does not take.
+    fn format(&self, path: &Path) -> Result<PlainFormat, String> {
+        let at2 = path
+            .extension()
+            .is_some_and(|x| x.to_string_lossy().eq_ignore_ascii_case("at2"));
+        if at2 {
+            if self.units.is_some_and(|u| u != RecordUnits::G) {
+                return Err(format!(
+                    "--units: {} is a PEER .AT2 record, in g; other units are for plain-text records",
+                    path.display()
+                ));
+            }
+            if self.record_dt.is_some() {
+                return Err(format!(
+                    "--record-dt: {} is a PEER .AT2 record, which states its own step",
+                    path.display()
+                ));
+            }
+        }
+        let format = PlainFormat {
+            dt: self.record_dt,
+            ..PlainFormat::default()
+        };
+        Ok(match self.units {
+            None | Some(RecordUnits::MetresPerSecondSquared) => format,
+            Some(RecordUnits::G) => format.in_g(),
+            Some(RecordUnits::CentimetresPerSecondSquared) => PlainFormat {
+                scale: 0.01,
+                ..format
+            },
+        })
+    }
+}
+
+/// Reads a record (PEER `.AT2`, or plain text in m/s² unless `--units` says otherwise). A `.json`
+/// file that does not parse as a record is most likely a report given where a record was
+/// expected: the error says so.
+pub fn read(path: &Path, format: &RecordFormatArgs) -> Result<Record, String> {
+    read_record(path, &format.format(path)?).map_err(|e| {
+        if let RecordError::InvalidArgument { field: "dt", message } = &e {
+            // The step of a plain-text record: the command's option.
+            return format!("--record-dt: {message}");
+        }
         let json = path
             .extension()
             .is_some_and(|x| x.to_string_lossy().eq_ignore_ascii_case("json"));

@@ -18,6 +18,8 @@ use crate::progress;
 /// Options of `rocking t1`.
 #[derive(Args, Debug)]
 pub struct T1Args {
+    #[command(flatten)]
+    pub record_format: super::sweep::RecordFormatArgs,
     /// The records (.AT2 in g, or plain text in m/s²).
     #[arg(required_unless_present = "merge")]
     pub records: Vec<PathBuf>,
@@ -159,7 +161,7 @@ pub fn run(a: &T1Args) -> Result<(), String> {
         let mut rows = Vec::new();
         for f in files {
             bar.set_message(f.display().to_string());
-            let record = super::sweep::read(&f)?;
+            let record = super::sweep::read(&f, &a.record_format)?;
             let t0 = Instant::now();
             let tick = || bar.inc(1);
             let result =
@@ -191,7 +193,9 @@ pub fn run(a: &T1Args) -> Result<(), String> {
         }
         // Rows written before t_p was part of the output: t_p from the record, when readable.
         for r in rows.iter_mut().filter(|r| r.t_p.is_none()) {
-            if let Ok(record) = super::sweep::read(std::path::Path::new(file_of(r))) {
+            if let Ok(record) =
+                super::sweep::read(std::path::Path::new(file_of(r)), &a.record_format)
+            {
                 r.t_p = spectra::replacement_sine(&record).map(|s| s.t_p);
             }
         }
@@ -215,7 +219,8 @@ pub fn run(a: &T1Args) -> Result<(), String> {
                         r.procedure.as_deref().unwrap_or("converged")
                     ));
                 }
-                let record = super::sweep::read(std::path::Path::new(file_of(r)))?;
+                let record =
+                    super::sweep::read(std::path::Path::new(file_of(r)), &a.record_format)?;
                 // The governing point's run at the row's own step (the finest when converged).
                 let o_row = o.at_step(r.dt_factor / a.simulation.dt_factor);
                 r.governing = governing(&record, &r.summary, &o_row)?;

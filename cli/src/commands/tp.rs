@@ -12,6 +12,8 @@ use crate::output::print_json;
 /// Options of `rocking tp`.
 #[derive(Args, Debug)]
 pub struct TpArgs {
+    #[command(flatten)]
+    pub record_format: super::sweep::RecordFormatArgs,
     /// The records (.AT2 in g, or plain text in m/s²).
     #[arg(required = true)]
     pub records: Vec<PathBuf>,
@@ -24,7 +26,7 @@ pub struct TpArgs {
 pub fn run(a: &TpArgs) -> Result<(), String> {
     let mut rows = Vec::new();
     for f in &a.records {
-        let record = super::sweep::read(f)?;
+        let record = super::sweep::read(f, &a.record_format)?;
         let s = replacement_sine(&record)
             .ok_or_else(|| format!("{}: the record is zero everywhere", f.display()))?;
         rows.push(TpRow::of(&record.name, Some(f.display().to_string()), &s));
