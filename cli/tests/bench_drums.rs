@@ -119,7 +119,8 @@ fn energy_residual_is_within_a_thousandth_with_consistent_impacts() {
     }
 }
 
-/// A bad `--pga` or `--mu` (or more drums than a column can have) is refused before any run,
+/// A bad `--pga` or `--mu` (or more drums than a column can have, or a `--dt` of more than 1e10
+/// steps for a record) is refused before any run,
 /// naming the argument (a NaN, 0 or negative value failed in the middle of the suite, after the
 /// runs of the values before it, as `target = NaN`, `invalid drum option friction` or `5000
 /// blocks: …`).
@@ -134,6 +135,7 @@ fn a_bad_pga_or_mu_is_refused_before_any_run() {
         "--mu=nan",
         "--mu=0",
         "--mu=0.5,-1",
+        "--dt=1e-300",
     ] {
         let run = common::run([
             "bench",
