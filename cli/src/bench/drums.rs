@@ -268,7 +268,7 @@ pub fn run(args: &DrumsBenchArgs) -> Result<(), String> {
     let finest = if args.halve { 0.5 * args.dt } else { args.dt };
     if let Some(r) = records.iter().find(|r| r.duration() / finest > 1e10) {
         return Err(format!(
-            "--dt: {}: more than 1e10 steps for {} ({} s)",
+            "--dt: {:?}: more than 1e10 steps for {} ({:?} s)",
             args.dt,
             r.name,
             r.duration()
