@@ -119,6 +119,24 @@ fn energy_residual_is_within_a_thousandth_with_consistent_impacts() {
     }
 }
 
+/// `rocking bench drums` on one tall drum under the bundled record, one thread, with `extra`
+/// arguments (later ones override).
+fn one_drum(extra: &[&str]) -> common::Run {
+    let base = [
+        "bench",
+        "drums",
+        "--records",
+        "examples/records",
+        "--drums",
+        "1",
+        "--shapes",
+        "1x10",
+        "--threads",
+        "1",
+    ];
+    common::run(base.iter().chain(extra))
+}
+
 /// A bad `--pga` or `--mu` (or more drums than a column can have, or a `--dt` of more than 1e10
 /// steps for a record) is refused before any run,
 /// naming the argument (a NaN, 0 or negative value failed in the middle of the suite, after the
@@ -137,19 +155,7 @@ fn a_bad_pga_or_mu_is_refused_before_any_run() {
         "--mu=0.5,-1",
         "--dt=1e-300",
     ] {
-        let run = common::run([
-            "bench",
-            "drums",
-            "--records",
-            "examples/records",
-            "--drums",
-            "1",
-            "--shapes",
-            "1x10",
-            "--threads",
-            "1",
-            bad,
-        ]);
+        let run = one_drum(&[bad]);
         let arg = bad.split('=').next().unwrap();
         assert!(!run.ok, "{bad} accepted: {}", run.stdout);
         assert!(run.stderr.contains(arg), "{bad}: {}", run.stderr);
@@ -159,22 +165,7 @@ fn a_bad_pga_or_mu_is_refused_before_any_run() {
             run.stdout
         );
     }
-    let run = common::run([
-        "bench",
-        "drums",
-        "--records",
-        "examples/records",
-        "--drums",
-        "1",
-        "--shapes",
-        "1x10",
-        "--threads",
-        "1",
-        "--pga",
-        "4",
-        "--mu",
-        "inf",
-    ]);
+    let run = one_drum(&["--pga", "4", "--mu", "inf"]);
     assert!(run.ok, "--mu inf (no sliding): {}", run.stderr);
 }
 
@@ -191,24 +182,7 @@ fn an_unwritable_output_is_refused_before_any_run() {
         ("--out", "/proc/rocking/report.md"),
         ("--csv", folder.as_str()),
     ] {
-        let run = common::run([
-            "bench",
-            "drums",
-            "--records",
-            "examples/records",
-            "--drums",
-            "1",
-            "--shapes",
-            "1x10",
-            "--pga",
-            "4",
-            "--mu",
-            "0.5",
-            "--threads",
-            "1",
-            flag,
-            path,
-        ]);
+        let run = one_drum(&["--pga", "4", "--mu", "0.5", flag, path]);
         assert!(!run.ok, "{flag} {path} accepted");
         assert!(run.stderr.contains(flag), "{flag} {path}: {}", run.stderr);
         assert!(

@@ -3,13 +3,23 @@
 
 mod common;
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 fn fresh_dir(name: &str) -> PathBuf {
     let d = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(name);
     let _ = std::fs::remove_dir_all(&d);
     std::fs::create_dir_all(&d).unwrap();
     d
+}
+
+/// `rocking simulate SCENE --out OUT`.
+fn simulate(scene: &Path, out: &Path) -> common::Run {
+    common::run([
+        "simulate".as_ref(),
+        scene.as_os_str(),
+        "--out".as_ref(),
+        out.as_os_str(),
+    ])
 }
 
 /// Runs each scene text (written next to a copy of the bundled record) and asserts that it fails
@@ -26,12 +36,7 @@ fn refused(dir: &str, cases: &[(String, &[&str])]) {
     let mut accepted = Vec::new();
     for (text, words) in cases {
         std::fs::write(&scene, text).unwrap();
-        let run = common::run([
-            "simulate".as_ref(),
-            scene.as_os_str(),
-            "--out".as_ref(),
-            out.as_os_str(),
-        ]);
+        let run = simulate(&scene, &out);
         if run.ok || !words.iter().all(|w| run.stderr.contains(w)) {
             accepted.push(format!("{text}\n  -> ok {}: {}", run.ok, run.stderr));
         }
@@ -76,12 +81,7 @@ fn units_or_a_step_given_for_an_at2_record_are_named() {
     .unwrap();
     std::fs::write(dir.join("scene.json"), record(r#", "units": "g""#)).unwrap();
     let out = dir.join("out");
-    let run = common::run([
-        "simulate".as_ref(),
-        dir.join("scene.json").as_os_str(),
-        "--out".as_ref(),
-        out.as_os_str(),
-    ]);
+    let run = simulate(&dir.join("scene.json"), &out);
     assert!(run.ok, "{}", run.stderr);
 }
 
@@ -196,12 +196,7 @@ fn an_arch_scene_of_too_many_steps_names_dt() {
         format!(r#"{{{arch}, "duration": 1e300, "dt": 0.001}}"#),
     )
     .unwrap();
-    let run = common::run([
-        "simulate".as_ref(),
-        dir.join("scene.json").as_os_str(),
-        "--out".as_ref(),
-        dir.join("out").as_os_str(),
-    ]);
+    let run = simulate(&dir.join("scene.json"), &dir.join("out"));
     assert!(run.stderr.len() < 200, "{}", run.stderr);
 }
 
@@ -219,12 +214,7 @@ fn a_zero_duration_runs_for_an_arch_as_for_a_column() {
             format!(r#"{{{body}, "duration": 0, "dt": 0.001}}"#),
         )
         .unwrap();
-        let run = common::run([
-            "simulate".as_ref(),
-            dir.join("scene.json").as_os_str(),
-            "--out".as_ref(),
-            dir.join("out").as_os_str(),
-        ]);
+        let run = simulate(&dir.join("scene.json"), &dir.join("out"));
         assert!(run.ok, "{name}: {}", run.stderr);
         let summary = std::fs::read_to_string(dir.join("out/summary.json")).unwrap();
         assert!(summary.contains("\"t_end\": 0.0"), "{name}: {summary}");
@@ -309,12 +299,7 @@ fn a_record_in_cm_s2_runs_as_the_same_record_in_m_s2() {
         )
         .unwrap();
         let out = dir.join(format!("out_{record}"));
-        let run = common::run([
-            "simulate".as_ref(),
-            scene.as_os_str(),
-            "--out".as_ref(),
-            out.as_os_str(),
-        ]);
+        let run = simulate(&scene, &out);
         assert!(run.ok, "{units}: {}", run.stderr);
         let events = std::fs::read_to_string(out.join("events.jsonl")).unwrap();
         let events: Vec<(String, f64)> = events
@@ -389,26 +374,21 @@ fn a_run_without_history_leaves_no_earlier_history_beside_its_summary() {
     .enumerate()
     {
         let out = dir.join(format!("out{k}"));
-        let simulate = |output: &str| {
+        let run_with = |output: &str| {
             let scene = dir.join(format!("scene{k}.json"));
             std::fs::write(&scene, format!(r#"{{{body}{output}}}"#)).unwrap();
-            let run = common::run([
-                "simulate".as_ref(),
-                scene.as_os_str(),
-                "--out".as_ref(),
-                out.as_os_str(),
-            ]);
+            let run = simulate(&scene, &out);
             assert!(run.ok, "{body}{output}: {}", run.stderr);
         };
-        simulate("");
+        run_with("");
         assert!(out.join("history.csv").exists() && out.join("events.jsonl").exists());
-        simulate(r#", "output": {"history": false}"#);
+        run_with(r#", "output": {"history": false}"#);
         assert!(
             !out.join("history.csv").exists(),
             "{body}: an earlier history.csv stayed"
         );
         assert!(out.join("events.jsonl").exists());
-        simulate(r#", "output": {"events": false, "history": false}"#);
+        run_with(r#", "output": {"events": false, "history": false}"#);
         assert!(
             !out.join("events.jsonl").exists(),
             "{body}: an earlier events.jsonl stayed"
