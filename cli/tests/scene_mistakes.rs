@@ -396,3 +396,25 @@ fn a_run_without_history_leaves_no_earlier_history_beside_its_summary() {
         assert!(out.join("summary.json").exists());
     }
 }
+
+/// A history too large for memory (`duration / dt / every` above 1e8 samples: a scene of 1e9
+/// steps would hold about 85 GB and be killed, not refused) is refused before the run, naming
+/// `output.every` and the `every` that would do, for a column, a drum column and an arch.
+#[test]
+fn a_history_too_large_for_memory_is_refused_naming_output_every() {
+    let long = r#""excitation": {"type": "none"}, "duration": 1e6, "dt": 0.001"#;
+    let cases: Vec<(String, &[&str])> = [
+        r#""blocks": [{"width": 1, "height": 2, "mass": 5000}]"#,
+        r#""blocks": [{"width": 1, "height": 2, "mass": 5000}], "on_sliding": "slide""#,
+        r#""arch": {"radius": 5, "thickness": 0.75, "voussoirs": 8}"#,
+    ]
+    .iter()
+    .map(|body| {
+        (
+            format!("{{{body}, {long}}}"),
+            &["output.every", "k >= 10", "output.history false"][..],
+        )
+    })
+    .collect();
+    refused("history_too_large", &cases);
+}

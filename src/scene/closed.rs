@@ -211,6 +211,7 @@ pub(super) fn build(
             format!("{dt}: more than 1e10 steps for the duration"),
         ));
     }
+    spec.output.check_samples(duration, dt)?;
     let options = LoopOptions {
         gravity: positive("gravity", spec.gravity.unwrap_or(defaults.gravity))?,
         dt,

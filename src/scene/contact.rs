@@ -189,6 +189,7 @@ pub(super) fn drum_options(spec: &SceneSpec, column: &Column) -> Result<DrumOpti
         };
         err(field, format!("{}: {}", e.value, e.rule))
     })?;
+    spec.output.check_samples(spec.duration, spec.dt)?;
     Ok(options)
 }
 

@@ -96,6 +96,33 @@ fn one() -> usize {
     1
 }
 
+/// History samples a scene may keep at most (`duration / dt / every`). Beyond it the history alone
+/// would need gigabytes of memory (about 85 bytes a sample for one block, more for each block or
+/// voussoir), and a run killed for lack of memory takes its caller with it.
+pub const MAX_HISTORY_SAMPLES: f64 = 1e8;
+
+impl OutputSpec {
+    /// Refuses a history of more than [`MAX_HISTORY_SAMPLES`] samples over `duration` at steps of
+    /// `dt`, naming `output.every` and what would do.
+    pub(crate) fn check_samples(&self, duration: f64, dt: f64) -> Result<(), SceneError> {
+        let steps = duration / dt;
+        let samples = steps / self.every.max(1) as f64;
+        if self.history && samples > MAX_HISTORY_SAMPLES {
+            return Err(err(
+                "output.every",
+                format!(
+                    "{}: {samples:.3e} history samples (duration / dt / every), more than \
+                     {MAX_HISTORY_SAMPLES:.0e}: keep every k-th step with k >= {}, or set \
+                     output.history false",
+                    self.every,
+                    (steps / MAX_HISTORY_SAMPLES).ceil()
+                ),
+            ));
+        }
+        Ok(())
+    }
+}
+
 impl Default for OutputSpec {
     fn default() -> OutputSpec {
         OutputSpec {
@@ -389,6 +416,7 @@ pub fn build(spec: SceneSpec, base: &Path, name: &str) -> Result<Scene, SceneErr
             err(field, e)
         }
     })?;
+    spec.output.check_samples(spec.duration, spec.dt)?;
     Ok(Scene {
         title: spec.title.unwrap_or_else(|| name.to_string()),
         column,
@@ -403,6 +431,22 @@ pub fn build(spec: SceneSpec, base: &Path, name: &str) -> Result<Scene, SceneErr
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_history_is_refused_only_beyond_its_sample_limit() {
+        let output = |history, every| OutputSpec {
+            history,
+            every,
+            events: true,
+        };
+        // 1e9 steps: refused with every step kept, kept at the limit with every 10th, and
+        // without a history.
+        assert!(output(true, 1).check_samples(1e6, 1e-3).is_err());
+        assert!(output(true, 9).check_samples(1e6, 1e-3).is_err());
+        assert!(output(true, 10).check_samples(1e6, 1e-3).is_ok());
+        assert!(output(false, 1).check_samples(1e6, 1e-3).is_ok());
+        assert!(output(true, 1).check_samples(30.0, 1e-3).is_ok());
+    }
 
     fn parse(text: &str) -> Result<Scene, SceneError> {
         let spec: SceneSpec = serde_json::from_str(text).map_err(|e| SceneError(e.to_string()))?;
