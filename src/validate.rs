@@ -28,6 +28,16 @@ impl InvalidValue {
     }
 }
 
+/// The most steps a run may take (`duration / dt`): a step smaller than that would never end
+/// the run. The column, drum and loop drivers, the loop scenes and `rocking bench drums` refuse
+/// it by the one rule [`too_many_steps`] (their messages say "more than 1e10 steps").
+pub const MAX_STEPS: f64 = 1e10;
+
+/// Whether a run of `duration` at steps of `dt` takes more than [`MAX_STEPS`] steps.
+pub fn too_many_steps(duration: f64, dt: f64) -> bool {
+    duration / dt > MAX_STEPS
+}
+
 /// `v` finite and `> 0`.
 pub fn positive(field: impl Into<String>, v: f64) -> Result<f64, InvalidValue> {
     if v.is_finite() && v > 0.0 {

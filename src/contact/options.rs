@@ -142,7 +142,7 @@ impl DrumOptions {
         if !(self.duration.is_finite() && self.duration >= 0.0) {
             return Err(bad("duration", self.duration, "must be finite and >= 0"));
         }
-        if self.duration / self.dt > 1e10 {
+        if crate::validate::too_many_steps(self.duration, self.dt) {
             return Err(bad("dt", self.dt, "more than 1e10 steps for the duration"));
         }
         if self.friction.is_nan() || self.friction <= 0.0 {

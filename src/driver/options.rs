@@ -308,7 +308,7 @@ impl RunOptions<'_> {
         let (physics, stepping, stopping) = (self.physics, &self.stepping, &self.stopping);
         validate::positive("stepping.dt", stepping.dt)?;
         validate::non_negative("stopping.duration", stopping.duration)?;
-        if stopping.duration / stepping.dt > 1e10 {
+        if validate::too_many_steps(stopping.duration, stepping.dt) {
             return Err(invalid(
                 "stepping.dt",
                 stepping.dt,

@@ -205,7 +205,7 @@ pub(super) fn build(
     let dt = positive("dt", spec.dt)?;
     // The loop driver's own limit, named as a column scene names it (the driver's message
     // printed the duration with all its digits: 300 of them for 1e300 s).
-    if duration / dt > 1e10 {
+    if crate::validate::too_many_steps(duration, dt) {
         return Err(err(
             "dt",
             format!("{dt}: more than 1e10 steps for the duration"),

@@ -266,7 +266,10 @@ pub fn run(args: &DrumsBenchArgs) -> Result<(), String> {
         .collect::<Result<Vec<Record>, String>>()?;
     // The scheme's step limit, before any run (it failed in the first run, as a drum option).
     let finest = if args.halve { 0.5 * args.dt } else { args.dt };
-    if let Some(r) = records.iter().find(|r| r.duration() / finest > 1e10) {
+    if let Some(r) = records
+        .iter()
+        .find(|r| rocking::validate::too_many_steps(r.duration(), finest))
+    {
         return Err(format!(
             "--dt: {:?}: more than 1e10 steps for {} ({:?} s)",
             args.dt,

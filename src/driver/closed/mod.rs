@@ -128,7 +128,7 @@ pub fn simulate_loop(
         return Err(bad("duration", options.duration));
     }
     // As the column driver (`RunOptions::validate`): a step that would never end the run.
-    if options.duration / options.dt > 1e10 {
+    if crate::validate::too_many_steps(options.duration, options.dt) {
         return Err(LoopError::Options(format!(
             "dt = {:e}: more than 1e10 steps for the duration ({} s)",
             options.dt, options.duration
