@@ -135,10 +135,7 @@ pub fn read_record(
     dt: Option<f64>,
     units: Option<&str>,
 ) -> PyResult<Record> {
-    let is_at2 = path
-        .extension()
-        .is_some_and(|e| e.to_string_lossy().eq_ignore_ascii_case("at2"));
-    if is_at2 {
+    if records::is_at2(&path) {
         // They were ignored: a record in m/s² under an .AT2 name read 9.81 times too strong.
         if let Some(dt) = dt {
             return Err(value_error(format!(
@@ -153,16 +150,12 @@ pub fn read_record(
             )));
         }
     }
-    let scale = match units.unwrap_or("m/s2") {
-        "m/s2" | "m/s^2" => 1.0,
-        "g" => GRAVITY,
-        "cm/s2" | "cm/s^2" | "gal" => 0.01,
-        other => {
-            return Err(value_error(format!(
-                "units = {other:?}, expected \"m/s2\", \"g\" or \"cm/s2\""
-            )))
-        }
-    };
+    let units = units.unwrap_or("m/s2");
+    let scale = records::units_scale(units).ok_or_else(|| {
+        value_error(format!(
+            "units = {units:?}, expected \"m/s2\", \"g\" or \"cm/s2\""
+        ))
+    })?;
     // A missing or unreadable file is the OSError Python users expect (FileNotFoundError, …).
     std::fs::metadata(&path)?;
     let format = PlainFormat { dt, scale };

@@ -175,10 +175,7 @@ pub(super) fn excitation(spec: &ExcitationSpec, base: &Path) -> Result<Excitatio
             // A PEER `.AT2` file states its own step and is in g: a `dt` or other `units` given
             // for it would be ignored, so name them (a record in m/s² under an `.AT2` name would
             // run 9.81 times too strong).
-            let is_at2 = full
-                .extension()
-                .is_some_and(|e| e.to_string_lossy().eq_ignore_ascii_case("at2"));
-            if is_at2 {
+            if records::is_at2(&full) {
                 if let Some(step) = dt {
                     return Err(err(
                         "excitation.dt",
@@ -198,22 +195,17 @@ pub(super) fn excitation(spec: &ExcitationSpec, base: &Path) -> Result<Excitatio
                     ));
                 }
             }
-            let mut format = PlainFormat {
-                dt: *dt,
-                ..PlainFormat::default()
-            };
-            match units.as_deref() {
-                None | Some("m/s2") | Some("m/s^2") => {}
-                Some("g") => format = format.in_g(),
-                // As `rocking.read_record` reads them (many catalogues are in gal).
-                Some("cm/s2") | Some("cm/s^2") | Some("gal") => format.scale = 0.01,
-                Some(other) => {
-                    return Err(err(
+            // As `rocking.read_record` reads them (many catalogues are in gal).
+            let scale = match units.as_deref() {
+                None => 1.0,
+                Some(u) => records::units_scale(u).ok_or_else(|| {
+                    err(
                         "excitation.units",
-                        format!("unknown units {other:?} (m/s2, g, cm/s2)"),
-                    ))
-                }
-            }
+                        format!("unknown units {u:?} (m/s2, g, cm/s2)"),
+                    )
+                })?,
+            };
+            let format = PlainFormat { dt: *dt, scale };
             let mut record =
                 records::read_record(&full, &format).map_err(|e| err("excitation.path", e))?;
             if let Some(target) = scale_to_pga {

@@ -220,7 +220,7 @@ pub fn run(args: &DrumsBenchArgs) -> Result<(), String> {
     let mut files: Vec<PathBuf> = std::fs::read_dir(&args.records)
         .map_err(|e| format!("--records {}: {e}", args.records.display()))?
         .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.extension().is_some_and(|x| x.eq_ignore_ascii_case("at2")))
+        .filter(|p| rocking::ground::records::is_at2(p))
         .collect();
     files.sort();
     let (drums, shapes, pgas, mus, limit) = if args.quick {

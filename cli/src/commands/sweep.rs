@@ -137,10 +137,7 @@ pub struct RecordFormatArgs {
 impl RecordFormatArgs {
     /// The plain-text format, or an error naming the option an `.AT2` record does not take.
     fn format(&self, path: &Path) -> Result<PlainFormat, String> {
-        let at2 = path
-            .extension()
-            .is_some_and(|x| x.to_string_lossy().eq_ignore_ascii_case("at2"));
-        if at2 {
+        if rocking::ground::records::is_at2(path) {
             if self.units.is_some_and(|u| u != RecordUnits::G) {
                 return Err(format!(
                     "--units: {} is a PEER .AT2 record, in g; other units are for plain-text records",

@@ -31,6 +31,7 @@ pub use synthetic::{
     SYNTHETIC_OMEGA_G, SYNTHETIC_PGA_G, SYNTHETIC_SEED, SYNTHETIC_ZETA_F, SYNTHETIC_ZETA_G,
 };
 
+use crate::model::column::GRAVITY;
 use crate::validate::InvalidValue;
 
 /// Why a record could not be read, parsed or built.
@@ -124,14 +125,30 @@ fn stem(path: &Path) -> String {
         .unwrap_or_else(|| path.display().to_string())
 }
 
+/// Whether [`read_record`] reads `path` as a PEER `.AT2` file (in g, with its own step): by its
+/// extension, in any case. Callers that take units or a step for a record refuse them for one.
+pub fn is_at2(path: &Path) -> bool {
+    path.extension()
+        .is_some_and(|e| e.to_string_lossy().eq_ignore_ascii_case("at2"))
+}
+
+/// The factor to m/s² of the units a plain-text record is given in, as scenes and Python's
+/// `read_record` name them: `"m/s2"` (or `"m/s^2"`) 1, `"g"` [`GRAVITY`], `"cm/s2"` (`"cm/s^2"`,
+/// `"gal"`) 0.01; `None` for any other name.
+pub fn units_scale(units: &str) -> Option<f64> {
+    match units {
+        "m/s2" | "m/s^2" => Some(1.0),
+        "g" => Some(GRAVITY),
+        "cm/s2" | "cm/s^2" | "gal" => Some(0.01),
+        _ => None,
+    }
+}
+
 /// Reads a record by extension: `.AT2`/`.at2` (any case) as PEER AT2 ([`parse_at2`], `format` is
 /// not used), anything else as plain text ([`parse_plain`] with `format`). The record is named
 /// after the file stem.
 pub fn read_record(path: &Path, format: &PlainFormat) -> Result<Record, RecordError> {
-    let is_at2 = path
-        .extension()
-        .is_some_and(|e| e.to_string_lossy().eq_ignore_ascii_case("at2"));
-    if is_at2 {
+    if is_at2(path) {
         read_at2(path)
     } else {
         let text = read_text(path)?;
