@@ -1,7 +1,7 @@
 //! Recorded ground motions: uniformly sampled horizontal ground accelerations in m/s².
 //!
 //! Readers for the PEER NGA `.AT2` format (values in g, converted with
-//! [`GRAVITY`](crate::model::column::GRAVITY) = 9.81 m/s², as the thesis does) and for plain text
+//! [`GRAVITY`] = 9.81 m/s², as the thesis does) and for plain text
 //! (one column of accelerations with a given time step, or two columns `t a`). Every failure is a
 //! [`RecordError`] that names the line (1-based) or the field; nothing panics and no record is
 //! ever silently shorter than its header says.
