@@ -1,6 +1,8 @@
 //! Writing result files so that a failure never leaves a half-written file behind: each file is
 //! written beside its destination and renamed into place.
 
+use std::fs::File;
+use std::io::{BufWriter, Write};
 use std::path::Path;
 
 /// Checks, before a long run, that [`write_atomic`] will be able to write `path` (`flag`: the
@@ -43,6 +45,16 @@ pub fn remove_unwritten(out: &Path, output: &rocking::scene::OutputSpec) -> Resu
 
 /// Writes `bytes` to `path` atomically (temporary file in the same directory, then rename).
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), String> {
+    write_atomic_with(path, |w| w.write_all(bytes))
+}
+
+/// Writes what `write` puts out to `path` atomically, as [`write_atomic`], through a buffer: a
+/// history of hundreds of megabytes goes to the file as it is formatted instead of being held
+/// whole in memory first (a twenty-drum run at dt = 0.1 ms held a 420 MB string).
+pub fn write_atomic_with<F>(path: &Path, write: F) -> Result<(), String>
+where
+    F: FnOnce(&mut BufWriter<File>) -> std::io::Result<()>,
+{
     let dir = path
         .parent()
         .filter(|p| !p.as_os_str().is_empty())
@@ -56,7 +68,12 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), String> {
         name.to_string_lossy(),
         std::process::id()
     ));
-    std::fs::write(&tmp, bytes).map_err(|e| {
+    let written = File::create(&tmp).and_then(|file| {
+        let mut w = BufWriter::with_capacity(1 << 16, file);
+        write(&mut w)?;
+        w.into_inner().map(drop).map_err(|e| e.into_error())
+    });
+    written.map_err(|e| {
         let _ = std::fs::remove_file(&tmp);
         format!("cannot write {}: {e}", path.display())
     })?;
@@ -117,5 +134,42 @@ mod tests {
         for (a, b) in xs.iter().zip(&back) {
             assert_eq!(a.to_bits(), b.to_bits(), "{a} read back as {b}");
         }
+    }
+
+    /// A file written through [`super::write_atomic_with`] appears whole or not at all: a writer
+    /// that fails half-way leaves neither the file nor its temporary beside it, and an earlier
+    /// file of that name stays as it was.
+    #[test]
+    fn a_failed_write_leaves_nothing_half_written() {
+        use std::io::Write;
+        let dir = std::env::temp_dir().join(format!("rocking-atomic-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        let path = dir.join("history.csv");
+        super::write_atomic_with(&path, |w| {
+            for i in 0..100_000 {
+                writeln!(w, "{i},{}", i as f64 * 0.5)?;
+            }
+            Ok(())
+        })
+        .unwrap();
+        let whole = std::fs::read_to_string(&path).unwrap();
+        assert_eq!(whole.lines().count(), 100_000);
+        assert!(whole.ends_with("99999,49999.5\n"));
+        let failed = super::write_atomic_with(&path, |w| {
+            w.write_all(&[b'x'; 200_000])?; // past the buffer: some of it reached the file
+            Err(std::io::Error::other("disk full"))
+        });
+        let message = failed.unwrap_err();
+        assert!(
+            message.contains("history.csv") && message.contains("disk full"),
+            "{message}"
+        );
+        assert_eq!(std::fs::read_to_string(&path).unwrap(), whole);
+        let names: Vec<_> = std::fs::read_dir(&dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name())
+            .collect();
+        assert_eq!(names, ["history.csv"], "a temporary file was left behind");
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 }

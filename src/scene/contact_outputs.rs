@@ -204,21 +204,27 @@ pub struct ContactHistoryColumns {
 impl ContactHistoryColumns {
     /// The columns of a run's history.
     pub fn of(h: &DrumHistory) -> Self {
+        Self::of_rows(h, 0..h.t.len())
+    }
+
+    /// The columns of the samples `rows` of a run's history (displacements still from the
+    /// run's first sample), so that a long history can be written a block of rows at a time.
+    pub fn of_rows(h: &DrumHistory, rows: std::ops::Range<usize>) -> Self {
         let n = h.n;
-        let rows = h.t.len();
+        let len = rows.len();
         let mut c = ContactHistoryColumns {
             n,
-            t: h.t.clone(),
-            x: Vec::with_capacity(rows * n),
-            y: Vec::with_capacity(rows * n),
-            block_rotation: Vec::with_capacity(rows * n),
-            slip: h.slip[..rows * n].to_vec(),
+            t: h.t[rows.clone()].to_vec(),
+            x: Vec::with_capacity(len * n),
+            y: Vec::with_capacity(len * n),
+            block_rotation: Vec::with_capacity(len * n),
+            slip: h.slip[rows.start * n..rows.end * n].to_vec(),
         };
-        if rows == 0 || n == 0 {
+        if len == 0 || n == 0 {
             return c;
         }
         let q0 = &h.q[..3 * n];
-        for q in h.q.chunks_exact(3 * n).take(rows) {
+        for q in h.q[3 * n * rows.start..].chunks_exact(3 * n).take(len) {
             for k in 0..n {
                 c.x.push(q[3 * k] - q0[3 * k]);
                 c.y.push(q[3 * k + 1] - q0[3 * k + 1]);
@@ -236,5 +242,40 @@ impl ContactHistoryColumns {
     /// No samples.
     pub fn is_empty(&self) -> bool {
         self.t.is_empty()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The columns taken a block of rows at a time are those of the whole history, bit for bit
+    /// (displacements from the run's first sample, not the block's).
+    #[test]
+    fn columns_by_blocks_of_rows_are_the_whole_columns() {
+        let (n, rows) = (3, 11);
+        let value = |i: usize| (i as f64 * 0.37).sin() * 1e-3 + i as f64;
+        let h = DrumHistory {
+            n,
+            t: (0..rows).map(|i| i as f64 * 1e-3).collect(),
+            q: (0..rows * 3 * n).map(value).collect(),
+            slip: (0..rows * n).map(|i| -value(i)).collect(),
+        };
+        let whole = ContactHistoryColumns::of(&h);
+        let mut joined = ContactHistoryColumns {
+            n,
+            ..ContactHistoryColumns::default()
+        };
+        for start in (0..rows).step_by(4) {
+            let c = ContactHistoryColumns::of_rows(&h, start..rows.min(start + 4));
+            joined.t.extend(c.t);
+            joined.x.extend(c.x);
+            joined.y.extend(c.y);
+            joined.block_rotation.extend(c.block_rotation);
+            joined.slip.extend(c.slip);
+        }
+        assert_eq!(joined, whole);
+        assert_eq!(whole.x[n * 5 + 1], h.q[3 * n * 5 + 3] - h.q[3]);
+        assert!(ContactHistoryColumns::of_rows(&h, 4..4).is_empty());
     }
 }

@@ -60,12 +60,21 @@ fn with_field(text: &str, e: &serde_json::Error) -> String {
         .strip_prefix("unknown field `")
         .and_then(|m| m.split_once('`'))
         .map(|(key, _)| key);
-    let (mut path, closed, owner) = field_at(text, e.line(), e.column(), unknown);
+    let end = offset(text, e.line(), e.column());
+    let (mut path, closed, owner) = field_at(text, end, unknown);
     if let Some(owner) = owner {
         path = owner;
     } else if !closed && message.starts_with("duplicate field") {
         // A repeated key, read as such: the object it is in.
         path.pop();
+    } else if closed && path.is_empty() && end > 0 && missing_below_top(text, &message) {
+        // A field missing in a value serde reads whole (an internally tagged `excitation`),
+        // last in the scene: its error comes after the scene's end, where the value closed
+        // just before the scene's closing brace is the one.
+        let (inner, inner_closed, _) = field_at(text, end - 1, None);
+        if inner_closed {
+            path = inner;
+        }
     }
     let path = render(&path);
     if path.is_empty() || message.starts_with(&format!("{path}:")) {
@@ -73,6 +82,20 @@ fn with_field(text: &str, e: &serde_json::Error) -> String {
     } else {
         format!("{path}: {message}")
     }
+}
+
+/// `message` says a field is missing which the scene itself has: it is missing in one of the
+/// scene's values, not in the scene.
+fn missing_below_top(text: &str, message: &str) -> bool {
+    let Some((key, _)) = message
+        .strip_prefix("missing field `")
+        .and_then(|m| m.split_once('`'))
+    else {
+        return false;
+    };
+    serde_json::from_str::<serde_json::Value>(text)
+        .ok()
+        .is_some_and(|scene| scene.get(key).is_some())
 }
 
 /// One step of a path: an object's key or an array's index.
@@ -114,17 +137,8 @@ fn steps(frames: &[Frame]) -> Vec<Step> {
         .collect()
 }
 
-/// The path of the value being read when `line`, `column` (serde_json's, 1-based, in bytes)
-/// of `text` had been read: the keys and indices of the objects and arrays open there; or, when
-/// an object or array had just closed there (`true`), that value's path. Third: the path of the
-/// last object before the position with the key `unknown`.
-fn field_at(
-    text: &str,
-    line: usize,
-    column: usize,
-    unknown: Option<&str>,
-) -> (Vec<Step>, bool, Option<Vec<Step>>) {
-    // The byte offset of the position, clamped to the text.
+/// The byte offset of serde_json's `line`, `column` (1-based, in bytes) in `text`, clamped to it.
+fn offset(text: &str, line: usize, column: usize) -> usize {
     let mut start = 0;
     for _ in 1..line {
         match text[start..].find('\n') {
@@ -132,7 +146,13 @@ fn field_at(
             None => break,
         }
     }
-    let end = (start + column).min(text.len());
+    (start + column).min(text.len())
+}
+
+/// The path of the value being read when the first `end` bytes of `text` had been read: the keys and indices of the objects and arrays open there; or, when
+/// an object or array had just closed there (`true`), that value's path. Third: the path of the
+/// last object before the position with the key `unknown`.
+fn field_at(text: &str, end: usize, unknown: Option<&str>) -> (Vec<Step>, bool, Option<Vec<Step>>) {
     let mut stack: Vec<Frame> = Vec::new();
     let mut closed: Option<Vec<Step>> = None;
     let mut owner = None;
@@ -261,6 +281,13 @@ mod tests {
             r#"{{"blocks": [{block}], "duration": 1, "dt": 0.001, "excitation": {{"type": "none", "phase": 1}}}}"#
         ));
         assert!(e.starts_with("excitation: unknown field `phase`"), "{e}");
+        // And a field missing there, which the scene has under the same name: the excitation's.
+        for space in ["", " ", "\n"] {
+            let e = error(&format!(
+                r#"{{"blocks": [{block}], "duration": 1, "dt": 0.001, "excitation": {{"type": "half_sine", "amplitude": 1}}{space}}}"#
+            ));
+            assert!(e.starts_with("excitation: missing field `duration`"), "{e}");
+        }
         // Lists where the scene has objects: refused, not read by position.
         for (text, path) in [
             (

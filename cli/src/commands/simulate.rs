@@ -7,7 +7,7 @@
 //! after the simulation succeeded, each atomically; then a `history.csv` or `events.jsonl` the
 //! scene does not write (`output`) is removed from `DIR`, where it was an earlier run's.
 
-use std::fmt::Write as _;
+use std::io::Write;
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -15,7 +15,7 @@ use clap::Args;
 use rocking::driver::{self, EventKind, Outcome, StopReason};
 use rocking::ground::FnMotion;
 
-use crate::output::{json_tree, write_atomic};
+use crate::output::{json_tree, write_atomic, write_atomic_with};
 use crate::plot::{Chart, Marker, Series, Style, COLORS};
 use crate::progress;
 use rocking::scene::{self, Scene, Summary};
@@ -66,7 +66,7 @@ pub fn run(a: &SimulateArgs) -> Result<(), String> {
 
     if scene.output.history {
         if let Some(h) = &outcome.history {
-            write_atomic(&out.join("history.csv"), history_csv(h).as_bytes())?;
+            write_atomic_with(&out.join("history.csv"), |w| write_history_csv(w, h))?;
         }
     }
     if scene.output.events {
@@ -129,41 +129,41 @@ fn peaks_text(peaks: &[f64]) -> String {
 
 /// The history as CSV: per interface its signed angle and rate (`phĭ + phî`), per block its
 /// absolute rotation, per interface its status.
-pub fn history_csv(h: &driver::History) -> String {
+pub fn write_history_csv<W: Write>(w: &mut W, h: &driver::History) -> std::io::Result<()> {
     let n = h.n_interfaces;
-    let mut s = String::from("t");
+    w.write_all(b"t")?;
     for k in 0..n {
-        let _ = write!(s, ",angle_{k}");
+        write!(w, ",angle_{k}")?;
     }
     for k in 0..n {
-        let _ = write!(s, ",rate_{k}");
+        write!(w, ",rate_{k}")?;
     }
     for k in 0..n {
-        let _ = write!(s, ",block_rotation_{k}");
+        write!(w, ",block_rotation_{k}")?;
     }
     for k in 0..n {
-        let _ = write!(s, ",status_{k}");
+        write!(w, ",status_{k}")?;
     }
-    s.push('\n');
+    w.write_all(b"\n")?;
     for i in 0..h.len() {
-        let _ = write!(s, "{}", h.t[i]);
+        write!(w, "{}", h.t[i])?;
         let phi = h.phi_at(i);
         let rates = &h.rates[i * 2 * n..(i + 1) * 2 * n];
         for k in 0..n {
-            let _ = write!(s, ",{}", phi[k] + phi[n + k]);
+            write!(w, ",{}", phi[k] + phi[n + k])?;
         }
         for k in 0..n {
-            let _ = write!(s, ",{}", rates[k] + rates[n + k]);
+            write!(w, ",{}", rates[k] + rates[n + k])?;
         }
         for v in h.block_angles_at(i) {
-            let _ = write!(s, ",{v}");
+            write!(w, ",{v}")?;
         }
         for st in &h.statuses[i * n..(i + 1) * n] {
-            let _ = write!(s, ",{}", st.as_i8());
+            write!(w, ",{}", st.as_i8())?;
         }
-        s.push('\n');
+        w.write_all(b"\n")?;
     }
-    s
+    Ok(())
 }
 
 fn stop_text(s: &StopReason) -> String {

@@ -13,7 +13,7 @@
 //! end and the scheme's energy accounts). `--plot FILE` draws the drum rotations in `FILE` and the
 //! joints' slips in `FILE_slips.EXT`.
 
-use std::fmt::Write as _;
+use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -22,7 +22,7 @@ use rocking::contact::simulation::{self, DrumHistory, DrumOutcome, DrumStop};
 use rocking::ground::FnMotion;
 use rocking::scene::{contact_events, ContactHistoryColumns, ContactSummary, Scene};
 
-use crate::output::{json_tree, write_atomic};
+use crate::output::{json_tree, write_atomic, write_atomic_with};
 use crate::plot::{Chart, Marker, Series, Style, COLORS};
 use crate::progress;
 
@@ -60,7 +60,7 @@ pub fn run(
 
     if scene.output.history {
         if let Some(h) = &outcome.history {
-            write_atomic(&out.join("history.csv"), history_csv(h).as_bytes())?;
+            write_atomic_with(&out.join("history.csv"), |w| write_history_csv(w, h))?;
         }
     }
     if scene.output.events {
@@ -107,26 +107,30 @@ pub fn slips_path(p: &Path) -> PathBuf {
 
 /// The history as CSV: per drum `x_k`, `y_k` (its centre's displacement from rest, m) and
 /// `block_rotation_k` (rad, positive counter-clockwise as the driver's), per joint `slip_k` (m).
-pub fn history_csv(h: &DrumHistory) -> String {
-    let c = ContactHistoryColumns::of(h);
-    let n = c.n;
-    let mut s = String::from("t");
+pub fn write_history_csv<W: Write>(w: &mut W, h: &DrumHistory) -> std::io::Result<()> {
+    let n = h.n;
+    w.write_all(b"t")?;
     for name in ["x", "y", "block_rotation", "slip"] {
         for k in 0..n {
-            let _ = write!(s, ",{name}_{k}");
+            write!(w, ",{name}_{k}")?;
         }
     }
-    s.push('\n');
-    for i in 0..c.len() {
-        let _ = write!(s, "{}", c.t[i]);
-        for column in [&c.x, &c.y, &c.block_rotation, &c.slip] {
-            for v in &column[n * i..n * (i + 1)] {
-                let _ = write!(s, ",{v}");
+    w.write_all(b"\n")?;
+    // A block of rows at a time: the columns of the whole history are not copied at once.
+    const BLOCK: usize = 4096;
+    for start in (0..h.t.len()).step_by(BLOCK) {
+        let c = ContactHistoryColumns::of_rows(h, start..h.t.len().min(start + BLOCK));
+        for i in 0..c.len() {
+            write!(w, "{}", c.t[i])?;
+            for column in [&c.x, &c.y, &c.block_rotation, &c.slip] {
+                for v in &column[n * i..n * (i + 1)] {
+                    write!(w, ",{v}")?;
+                }
             }
+            w.write_all(b"\n")?;
         }
-        s.push('\n');
     }
-    s
+    Ok(())
 }
 
 fn stop_text(s: &DrumStop) -> String {

@@ -9,7 +9,7 @@
 //! `--plot FILE` draws the chain in its closed geometry with every hinge that opened marked at its
 //! pivot corner, and the joint angles against time in `FILE_history.EXT`.
 
-use std::fmt::Write as _;
+use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -19,7 +19,7 @@ use rocking::scene::{
     hinges, loop_event_name, loop_events, loop_joint_angles, LoopScene, LoopSummary,
 };
 
-use crate::output::{json_tree, write_atomic};
+use crate::output::{json_tree, write_atomic, write_atomic_with};
 use crate::plot::{Chart, Marker, Series, Style, COLORS};
 
 /// Runs the loop scene and writes its outputs.
@@ -40,10 +40,9 @@ pub fn run(
     let wall = started.elapsed().as_secs_f64();
     let n = scene.chain.n_joints();
     if scene.output.history {
-        write_atomic(
-            &out.join("history.csv"),
-            history_csv(&outcome, n).as_bytes(),
-        )?;
+        write_atomic_with(&out.join("history.csv"), |w| {
+            write_history_csv(w, &outcome, n)
+        })?;
     }
     if scene.output.events {
         let mut lines = String::new();
@@ -89,21 +88,21 @@ pub fn history_path(p: &Path) -> PathBuf {
 }
 
 /// The history as CSV: t and per joint its signed angle (rad).
-pub fn history_csv(o: &LoopOutcome, n: usize) -> String {
+pub fn write_history_csv<W: Write>(w: &mut W, o: &LoopOutcome, n: usize) -> std::io::Result<()> {
     let (t, angles) = loop_joint_angles(o, n);
-    let mut s = String::from("t");
+    w.write_all(b"t")?;
     for k in 0..n {
-        let _ = write!(s, ",angle_{k}");
+        write!(w, ",angle_{k}")?;
     }
-    s.push('\n');
+    w.write_all(b"\n")?;
     for (t, row) in t.iter().zip(angles.chunks_exact(n.max(1))) {
-        let _ = write!(s, "{t}");
+        write!(w, "{t}")?;
         for v in row {
-            let _ = write!(s, ",{v}");
+            write!(w, ",{v}")?;
         }
-        s.push('\n');
+        w.write_all(b"\n")?;
     }
-    s
+    Ok(())
 }
 
 /// The chain in its closed geometry (each joint's face, the corners joined in chain order: an
