@@ -96,3 +96,14 @@ def test_ground_motion_with_stiff_blocks_against_the_rigid_driver(cli, root):
     rigid = rocking.simulate(dict(json.loads(path.read_text()), exact_velocity_terms=True))
     assert len(tipped) == 1 and rigid.stop_reason == "overturned"
     assert abs(tipped[0]["t"] - rigid.t_end) <= 2e-3, (tipped[0]["t"], rigid.t_end)
+
+
+def test_a_scene_with_an_at2_record_gives_its_excitation(root):
+    """The bundled record scene (an .AT2, in g, no units given): the excitation is the record
+    scaled to the scene's PGA (it was read with units "m/s2", which an .AT2 refuses)."""
+    scenes = root / "examples" / "scenes"
+    spec, base = rocking.opensees.load_scene(scenes / "column_synthetic_record.json")
+    record = rocking.opensees.excitation_of(spec["excitation"], base)
+    expected = rocking.read_record(root / "examples" / "records" / "synthetic.AT2")
+    assert record.dt == expected.dt and len(record) == len(expected)
+    assert record.pga == pytest.approx(spec["excitation"]["scale_to_pga"], rel=1e-12)

@@ -50,8 +50,10 @@ def excitation_of(spec, base):
         return None
     if kind == "record":
         path = Path(args["path"])
+        # units None: the reader's default, m/s2 for plain text and g for a PEER .AT2 (which
+        # refuses any other units).
         record = rocking.read_record(path if path.is_absolute() else base / path, dt=args.get("dt"),
-                                     units=args.get("units") or "m/s2")
+                                     units=args.get("units"))
         return record.scaled_to_pga(args["scale_to_pga"]) if args.get("scale_to_pga") is not None else record
     makers = {"half_sine": rocking.half_sine, "full_sine": rocking.full_sine, "half_sines": rocking.half_sines,
               "rectangular": rocking.rectangular, "triangular": rocking.triangular, "ricker": rocking.ricker,
