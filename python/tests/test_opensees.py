@@ -107,3 +107,47 @@ def test_a_scene_with_an_at2_record_gives_its_excitation(root):
     expected = rocking.read_record(root / "examples" / "records" / "synthetic.AT2")
     assert record.dt == expected.dt and len(record) == len(expected)
     assert record.pga == pytest.approx(spec["excitation"]["scale_to_pga"], rel=1e-12)
+
+
+def no_cli(monkeypatch, tmp_path):
+    """An environment without the rocking command line: ROCKING_CLI unset, nothing on the PATH."""
+    monkeypatch.delenv("ROCKING_CLI", raising=False)
+    monkeypatch.setenv("PATH", str(tmp_path))
+
+
+def test_the_rigid_driver_without_a_command_line_is_the_package_own(monkeypatch, tmp_path):
+    """README's `python -m rocking.opensees ... --compare` needed the CLI on the PATH (a
+    FileNotFoundError after the OpenSees run): without one the rigid driver is rocking.simulate,
+    the same driver, with the exact velocity terms."""
+    no_cli(monkeypatch, tmp_path)
+    events = rocking.opensees.rigid_driver_events(SINGLE_BLOCK, duration=0.5)
+    rigid = rocking.simulate(dict(SINGLE_BLOCK, duration=0.5, exact_velocity_terms=True))
+    assert [e["kind"] for e in events] == [e["kind"] for e in rigid.events] and len(events) >= 1
+    assert [e["t"] for e in events] == [e["t"] for e in rigid.events]
+
+
+def test_the_rigid_driver_from_the_command_line_gives_the_same_events(cli):
+    from_cli = rocking.opensees.rigid_driver_events(SINGLE_BLOCK, duration=0.5, cli=cli)
+    own = rocking.opensees.rigid_driver_events(SINGLE_BLOCK, duration=0.5, cli=None)
+    assert [(e["kind"], e["interface"], e["t"]) for e in from_cli] == [(e["kind"], e["interface"], e["t"]) for e in own]
+
+
+def test_a_cli_that_does_not_exist_is_refused_before_the_run(tmp_path):
+    out = subprocess.run([sys.executable, "-m", "rocking.opensees", str(tmp_path / "missing.json"), "--compare",
+                          "--cli", str(tmp_path / "no-such-rocking")], capture_output=True, text=True)
+    assert out.returncode == 2 and "Traceback" not in out.stderr
+    assert "cli: " in out.stderr and "no-such-rocking" in out.stderr
+
+
+def test_a_missing_scene_is_an_error_message_not_a_traceback(tmp_path):
+    out = subprocess.run([sys.executable, "-m", "rocking.opensees", str(tmp_path / "missing.json")],
+                         capture_output=True, text=True)
+    assert out.returncode == 2 and "Traceback" not in out.stderr and "missing.json" in out.stderr
+
+
+@needs_opensees
+def test_the_readme_command_runs_without_a_command_line(root, monkeypatch, tmp_path):
+    no_cli(monkeypatch, tmp_path)
+    out = subprocess.run([sys.executable, "-m", "rocking.opensees", "examples/scenes/two_block_free_rocking.json",
+                          "--duration", "0.33", "--compare"], capture_output=True, text=True, cwd=root, check=True)
+    check_against_driver(json.loads(out.stdout), 5)
