@@ -6,6 +6,7 @@ tests/opensees, docs/opensees.md §5). Runs where openseespy is installed (tests
 elsewhere only the import checks run."""
 import importlib.util
 import json
+import math
 import os
 import subprocess
 import sys
@@ -13,6 +14,7 @@ import sys
 import pytest
 
 import rocking
+import rocking.opensees
 
 HAVE_OPENSEES = importlib.util.find_spec("openseespy") is not None
 needs_opensees = pytest.mark.skipif(not HAVE_OPENSEES, reason="openseespy not installed (tests/opensees/run.sh has it)")
@@ -151,3 +153,35 @@ def test_the_readme_command_runs_without_a_command_line(root, monkeypatch, tmp_p
     out = subprocess.run([sys.executable, "-m", "rocking.opensees", "examples/scenes/two_block_free_rocking.json",
                           "--duration", "0.33", "--compare"], capture_output=True, text=True, cwd=root, check=True)
     check_against_driver(json.loads(out.stdout), 5)
+
+
+def scene_file(root, name):
+    return root / "examples" / "scenes" / name
+
+
+@pytest.mark.parametrize("name, says", [("arch_half_sine.json", "closed chain"),
+                                        ("drums_sliding_column.json", "contact scheme")])
+def test_scenes_it_does_not_model_are_refused(root, name, says):
+    """An arch failed with KeyError: 'blocks'; drums that slide and fly ran as rocking blocks
+    (friction and sliding ignored)."""
+    with pytest.raises(rocking.RockingError, match=says):
+        rocking.opensees.run(scene_file(root, name))
+
+
+@pytest.mark.parametrize("change, says", [
+    (dict(gravity=3.71), "gravity = 3.71"),
+    (dict(durations=1.0), "unknown field `durations`"),
+    (dict(blocks=[{"width": 1.0, "height": 0.3, "mass": 100.0}]), r"blocks\[0\]: inertia"),
+    (dict(blocks=[{"width": -0.2, "height": 0.6, "mass": 100.0}]), r"blocks\[0\].width"),
+])
+def test_a_scene_is_checked_by_the_library_before_the_model_is_built(change, says):
+    with pytest.raises(rocking.RockingError, match=says):
+        rocking.opensees.run(dict(SINGLE_BLOCK, **change))
+
+
+@pytest.mark.parametrize("option, value", [("dt", 0.0), ("dt", -1e-4), ("dt", math.nan), ("duration", -1.0),
+                                           ("block_stiffness", -2e10), ("k_contact", 0.0), ("max_events", -1)])
+def test_run_options_out_of_range_are_refused(option, value):
+    """dt = 0 fell back to the default silently; a negative dt stepped 1e-9 s at a time for ever."""
+    with pytest.raises(rocking.RockingError, match=f"{option} = "):
+        rocking.opensees.run(SINGLE_BLOCK, **{option: value})

@@ -1,6 +1,8 @@
 """The transient analysis: OpenSees integrates, the library decides (docs/opensees.md §2), with
 event detection and step control, from a CLI scene (blocks, initial angles, excitation)."""
 import json
+import math
+import numbers
 import os
 from pathlib import Path
 
@@ -38,6 +40,42 @@ def load_scene(scene):
         return scene, Path.cwd()
     path = Path(scene)
     return json.loads(path.read_text()), path.resolve().parent
+
+
+def check_scene(spec, base):
+    """The scene checked by the library's parser (every field, with its messages: a scene run
+    for no time), and refused when it is not what this model integrates: a column of blocks on
+    the thesis's driver under standard gravity (an arch or a colonnade, drums that slide or fly,
+    another gravity were run as something else or failed with a KeyError)."""
+    result = rocking.simulate(dict(spec, duration=0.0), base=os.fspath(base))
+    if not isinstance(result, rocking.Simulation):
+        what = "a closed chain (arch, colonnade)" if isinstance(result, rocking.LoopSimulation) else \
+            "the contact scheme (scheme, on_sliding, on_tension: drums that slide or fly)"
+        raise rocking._error(f"scene: rocking.opensees models a column of blocks on the thesis's driver, not "
+                             f"{what}; run it with rocking.simulate")
+    gravity = spec.get("gravity", rocking.GRAVITY)
+    if gravity != rocking.GRAVITY:
+        raise rocking._error(f"gravity = {gravity}: rocking.opensees models standard gravity ({rocking.GRAVITY} m/s2)")
+    for k, b in enumerate(spec["blocks"]):
+        w, h, m = b["width"], b["height"], b["mass"]
+        inertia = b.get("inertia") or m * (w * w + h * h) / 12.0
+        if m - 4.0 * inertia / (h * h) <= 0.0:
+            # The three mass points of thesis Appendix C: the centre's would be negative.
+            raise rocking._error(f"blocks[{k}]: inertia {inertia:g} kg m2 too large for three mass points on the "
+                                 f"block's axis (4 I / h^2 >= mass: a block much wider than tall)")
+
+
+def _check_run_options(**options):
+    """The options of :func:`run`, each finite and positive (``duration``, ``max_events`` >= 0),
+    or None for the default."""
+    for name, v in options.items():
+        if v is None:
+            continue
+        at_least_zero = name in ("duration", "max_events")
+        if isinstance(v, bool) or not isinstance(v, numbers.Real):
+            raise TypeError(f"{name}: expected a number, got {type(v).__name__}")
+        if not math.isfinite(v) or v < 0 or (v == 0 and not at_least_zero):
+            raise rocking._error(f"{name} = {v}: must be a finite number {'>= 0' if at_least_zero else 'greater than zero'}")
 
 
 def excitation_of(spec, base):
@@ -127,7 +165,8 @@ def run(scene, dt=None, duration=None, max_events=None, k_contact=None, block_st
 
     ``scene``: a dict with the CLI's scene schema (``blocks``, ``initial_angles``,
     ``excitation``, ``impacts``, ``duration``, ``dt``, ``solver``, ``title``) or the path of a
-    scene file. ``dt``: OpenSees's time step (default ``min(scene dt, 1e-4)``: the contact springs
+    scene file, checked by the library's parser first (:class:`rocking.RockingError` naming the
+    field); a closed chain, the contact scheme or another gravity are refused. ``dt``: OpenSees's time step (default ``min(scene dt, 1e-4)``: the contact springs
     need it); ``duration``, ``max_events``: stop earlier than the scene. ``k_contact``,
     ``block_stiffness``: see :meth:`ColumnModel.build`. An impact after which the kinetic energy
     is below ``settle`` times the largest seen so far, or that comes within three steps of the
@@ -155,6 +194,9 @@ def run(scene, dt=None, duration=None, max_events=None, k_contact=None, block_st
     pivot, SPEC §5), as the rigid driver does.
     """
     spec, base = load_scene(scene)
+    check_scene(spec, base)
+    _check_run_options(dt=dt, duration=duration, max_events=max_events, k_contact=k_contact,
+                       block_stiffness=block_stiffness, settle=settle)
     blocks = spec["blocks"]
     width = [b["width"] for b in blocks]
     height = [b["height"] for b in blocks]
@@ -166,7 +208,7 @@ def run(scene, dt=None, duration=None, max_events=None, k_contact=None, block_st
     if len(angles) != n:
         raise rocking._error(f"initial_angles: {len(angles)} values for {n} blocks")
     excitation = excitation_of(spec.get("excitation", {"type": "none"}), base)
-    dt = dt or min(spec["dt"], 1e-4)
+    dt = min(spec["dt"], 1e-4) if dt is None else dt
     duration = spec["duration"] if duration is None else duration
     max_events = 10**9 if max_events is None else max_events
     model = ColumnModel.build(width, height, mass, contact, inertia, k_contact, block_stiffness)
