@@ -175,6 +175,10 @@ def _numbers(**args):
     """A TypeError naming the argument that is not a number (``None`` allowed for ``tail``,
     ``threads`` and ``converge_step``): the extension's own message names it on some Python
     versions only."""
+    progress = args.pop("progress", None)
+    if progress is not None and not callable(progress):
+        # It was called only once the sweep ran (TypeError: 'int' object is not callable).
+        raise TypeError(f"progress: expected a callable progress(done, total) or None, got {type(progress).__name__}")
     for name, v in args.items():
         if v is None and name in _OPTIONAL:
             continue
@@ -185,6 +189,10 @@ def _numbers(**args):
         if integral and not -2**63 <= v < 2**63:
             # The extension would raise Python's OverflowError: the package's one exception instead.
             raise _error(f"{name} = {v}: out of range")
+        if name == "threads" and not 1 <= v <= _rocking.MAX_THREADS:
+            # A negative count was Python's OverflowError (unnamed), a huge one started that many
+            # threads (the extension checks it too).
+            raise _error(f"threads = {v}: must be in 1..={_rocking.MAX_THREADS}")
 
 
 def _simulation(impacts, dt_factor, tail, hermite, rk4, full_runs):
@@ -197,7 +205,7 @@ def _grid_args(slenderness, levels, level_max, sizes, size_min, size_max, blocks
                tail, hermite, rk4, full_runs, threads, progress):
     """``grid, simulation, threads, progress`` of the extension's ``_oas`` and ``_t1``."""
     _numbers(slenderness=slenderness, level_max=level_max, size_min=size_min, size_max=size_max, blocks=blocks,
-             impacts=impacts, dt_factor=dt_factor, tail=tail, threads=threads)
+             impacts=impacts, dt_factor=dt_factor, tail=tail, threads=threads, progress=progress)
     grid = dict(slenderness=slenderness, levels=_count(levels), level_max=level_max, sizes=_count(sizes),
                 size_min=size_min, size_max=size_max, blocks=blocks, bisection=bool(bisection))
     return grid, _simulation(impacts, dt_factor, tail, hermite, rk4, full_runs), threads, progress
@@ -304,7 +312,7 @@ def oc(shape="half-sine", *, blocks=1, slenderness=12.0, size=1.0, ptp=40, ptp_m
 
     Returns an :class:`Oc`."""
     _numbers(blocks=blocks, slenderness=slenderness, size=size, ptp_min=ptp_min, ptp_max=ptp_max, level_max=level_max,
-             impacts=impacts, dt_factor=dt_factor, tail=tail, threads=threads)
+             impacts=impacts, dt_factor=dt_factor, tail=tail, threads=threads, progress=progress)
     return Oc(_rocking._oc(shape, blocks, slenderness, size, _count(ptp), ptp_min, ptp_max, _count(levels), level_max,
                            _simulation(impacts, dt_factor, tail, hermite, rk4, full_runs), threads, progress))
 

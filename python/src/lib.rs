@@ -58,6 +58,8 @@ fn _rocking(m: &Bound<'_, PyModule>) -> PyResult<()> {
     // The defaults of `t1`'s convergence in the step (`rocking t1 --converge-step`'s).
     m.add("STEP_TOLERANCE", rocking::spectra::STEP_TOLERANCE)?;
     m.add("STEP_HALVINGS", rocking::spectra::STEP_HALVINGS)?;
+    // The most threads a sweep starts (`threads=`).
+    m.add("MAX_THREADS", sweep::MAX_THREADS)?;
     m.add_function(wrap_pyfunction!(spectra::_oc, m)?)?;
     m.add_function(wrap_pyfunction!(spectra::_simplified_oas, m)?)?;
     m.add_function(wrap_pyfunction!(spectra::_tp, m)?)?;
