@@ -20,8 +20,8 @@ _SIMULATION_DOC = """
     2: the thesis's recommended model), ``dt_factor`` a factor on the time step rule
     (``min(Δt_record/4, t_p/100, 1/(100 p))``), ``tail`` simulated time after the motion in units
     of ``1/p`` (default 2), ``hermite`` Hermite event location, ``rk4`` RK4 with it,
-    ``full_runs`` every run to its end (same verdicts, slower). ``threads``: rayon threads
-    (default every core; results identical). ``progress``: a callable ``progress(done, total)``
+    ``full_runs`` every run to its end (same verdicts, slower). ``threads``: rayon threads,
+    1 to 1024 (default every core; results identical). ``progress``: a callable ``progress(done, total)``
     called as levels (durations) finish."""
 
 
