@@ -182,6 +182,33 @@ def test_not_an_array_is_a_type_error(two_blocks):
         assert next(iter(bad)) in str(info.value)
 
 
+def test_strings_and_dates_are_not_numbers(two_blocks):
+    """numpy reads the strings "0" and "-1" and a date (days since 1970) as float64: they were
+    taken as numbers. Refused, naming the argument (the statuses, masses, rates, records, times
+    and design arguments alike)."""
+    M, _ = two_blocks
+    for bad in [dict(velocity=["0", "0", "0", "-1"]), dict(velocity=np.array(["0", "0", "0", "-1"])),
+                dict(velocity=np.array([b"0", b"0", b"0", b"-1"])), dict(status=np.array(["0", "1"])),
+                dict(mass=M.astype(str)), dict(velocity=np.array(["2020-01-01"] * 4, dtype="datetime64[D]")),
+                dict(velocity=np.array([0, 0, 0, -1], dtype="timedelta64[s]"))]:
+        with pytest.raises(TypeError, match=f"{next(iter(bad))}: ") as info:
+            rocking.impact_model(**impact_args(M, **bad))
+        assert "not numbers" in str(info.value), info.value
+    with pytest.raises(TypeError, match="width: "):
+        rocking.column_mass_matrix(["0.1"], [0.3], [15])
+    with pytest.raises(TypeError, match="samples: "):
+        rocking.Record(np.array(["1", "2"]), 0.01)
+    with pytest.raises(TypeError, match="t: "):
+        rocking.half_sine(1.0, 1.0).acceleration("0.5")
+    for name in ["height", "pga", "t1"]:
+        args = dict(height=10.0, pga=3.0, t1=0.25)
+        for bad in [None, "3", ["3"], [3.0, None]]:
+            with pytest.raises(TypeError, match=f"{name}: "):
+                rocking.design_width(**dict(args, **{name: bad}))
+    with pytest.raises(TypeError, match="width: "):
+        rocking.design_check(width=None, height=10.0, pga=3.0, t1=0.25)
+
+
 def test_codes_and_messages_are_the_c_abis(cabi):
     """ERROR_CODES is the C header's table, and each RockingError.message is the text of
     rocking_error_message for its code."""
