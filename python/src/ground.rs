@@ -44,6 +44,12 @@ impl Record {
     #[pyo3(signature = (samples, dt, name = "record"))]
     fn new(samples: &Bound<'_, PyAny>, dt: f64, name: &str) -> PyResult<Record> {
         let samples = any_vector(samples, "samples")?;
+        if samples.is_empty() {
+            // As read_record refuses an empty file: no ground motion at all ran as a record.
+            return Err(value_error(
+                "samples: no sample, a record needs at least one",
+            ));
+        }
         let inner = CoreRecord::new(name, dt, samples).map_err(value_error)?;
         Ok(Record { inner })
     }

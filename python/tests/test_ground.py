@@ -65,6 +65,14 @@ def test_record_from_samples():
     assert "mine" in repr(r)
 
 
+def test_a_record_without_samples_is_refused():
+    """An empty file is refused by read_record; Record([], dt) was accepted and ran a simulation
+    under no ground motion at all, silently."""
+    for empty in ([], np.zeros(0), ()):
+        with pytest.raises(rocking.RockingError, match="samples: no sample"):
+            rocking.Record(empty, 0.01)
+
+
 def test_pulses():
     hs = rocking.half_sine(3.0, 0.5)
     t = np.linspace(-0.1, 0.6, 71)
