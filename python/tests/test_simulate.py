@@ -124,6 +124,11 @@ def test_output_options(root):
     none = rocking.simulate(dict(scene, output={"history": False}))
     assert none.events == full.events
     assert none.t.shape == (0,) and none.angles.shape == (0, 2) and none.statuses.shape == (0, 2)
+    # Without events the CLI writes no events.jsonl, and the contact and loop runs return none:
+    # the column's run returned them all the same. The summary still counts them.
+    quiet = rocking.simulate(dict(scene, output={"events": False}))
+    assert quiet.events == [] and quiet.summary["events"] == full.summary["events"]
+    assert np.array_equal(quiet.t, full.t)
 
 
 def test_against_the_cli_binary_on_other_settings(root, tmp_path):
