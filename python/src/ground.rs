@@ -15,9 +15,12 @@ use rocking::validate;
 use crate::arrays::{any_vector, floats, new_vector};
 use crate::errors::value_error;
 
-/// `f` on a float, or elementwise on an array-like of times (a new array of the same shape).
+/// `f` on a float, or elementwise on an array-like of times (a new array of the same shape). A
+/// NaN time gives NaN (the motions compare the time with their start and end, which a NaN fails:
+/// it gave 0).
 fn evaluate<'py>(t: &Bound<'py, PyAny>, f: impl Fn(f64) -> f64) -> PyResult<Bound<'py, PyAny>> {
     let py = t.py();
+    let f = |x: f64| if x.is_nan() { f64::NAN } else { f(x) };
     if t.is_instance_of::<PyFloat>() || t.is_instance_of::<PyInt>() {
         let x: f64 = t.extract()?;
         return Ok(PyFloat::new(py, f(x)).into_any());

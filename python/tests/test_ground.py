@@ -73,6 +73,16 @@ def test_a_record_without_samples_is_refused():
             rocking.Record(empty, 0.01)
 
 
+def test_the_ground_motion_at_a_nan_time_is_nan(root):
+    """A NaN time gave 0.0 (no comparison with a NaN holds, so it fell "outside" the motion), a
+    number out of no time; infinities are before the start or after the end: zero."""
+    record = rocking.read_record(root / "examples/records/synthetic.AT2")
+    for motion in [record, rocking.half_sine(2.0, 0.5), rocking.ricker(2.0, 1.5)]:
+        assert math.isnan(motion.acceleration(math.nan))
+        a = motion.acceleration(np.array([math.nan, math.inf, -math.inf, 0.25]))
+        assert math.isnan(a[0]) and a[1] == a[2] == 0.0 and a[3] == motion.acceleration(0.25)
+
+
 def test_pulses():
     hs = rocking.half_sine(3.0, 0.5)
     t = np.linspace(-0.1, 0.6, 71)
