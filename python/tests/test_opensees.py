@@ -209,3 +209,11 @@ def test_the_bundled_two_block_scene_runs_to_its_end(root):
     # The settling comes 6.6 ms before the driver's; the later impacts drift by 0.9, 5.8 and
     # 10.3 ms (measured), within 1 % of their times.
     assert len(after) == 3 and all(a["t"] == pytest.approx(b["t"], rel=1e-2) for a, b in zip(after, driver_after))
+
+
+def test_a_file_that_is_not_json_is_named(root):
+    """It said `Expecting value: line 1 column 1 (char 0)`, naming no file."""
+    out = subprocess.run([sys.executable, "-m", "rocking.opensees", "README.md"], capture_output=True, text=True,
+                         cwd=root)
+    assert out.returncode == 2 and "Traceback" not in out.stderr
+    assert "README.md: not a JSON scene" in out.stderr, out.stderr

@@ -39,7 +39,11 @@ def load_scene(scene):
     if isinstance(scene, dict):
         return scene, Path.cwd()
     path = Path(scene)
-    return json.loads(path.read_text()), path.resolve().parent
+    try:
+        spec = json.loads(path.read_text())
+    except json.JSONDecodeError as e:
+        raise rocking._error(f"{path}: not a JSON scene ({e})") from None
+    return spec, path.resolve().parent
 
 
 def check_scene(spec, base):
