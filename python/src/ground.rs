@@ -6,7 +6,7 @@ use std::path::PathBuf;
 use numpy::ndarray::{ArrayD, IxDyn};
 use numpy::IntoPyArray;
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyFloat, PyInt};
+use pyo3::types::{PyDict, PyFloat, PyInt, PyTuple};
 use rocking::ground::excitation::Pulse as CorePulse;
 use rocking::ground::records::{self, PlainFormat, Record as CoreRecord};
 use rocking::model::column::GRAVITY;
@@ -118,6 +118,17 @@ impl Record {
 
     fn __len__(&self) -> usize {
         self.inner.samples.len()
+    }
+
+    /// Pickling (multiprocessing, ``copy.deepcopy``): rebuilt from its samples, step and name.
+    fn __reduce__<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> (Bound<'py, PyAny>, (Bound<'py, PyAny>, f64, String)) {
+        (
+            py.get_type::<Record>().into_any(),
+            (self.samples(py), self.inner.dt, self.inner.name.clone()),
+        )
     }
 
     fn __repr__(&self) -> String {
@@ -272,6 +283,46 @@ impl Pulse {
             }
         }
         Ok(d)
+    }
+
+    /// Pickling (multiprocessing, ``copy.deepcopy``): rebuilt by the function that makes it.
+    fn __reduce__<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyTuple>)> {
+        let (maker, args) = match self.inner {
+            CorePulse::HalfSines {
+                amplitude,
+                half_period,
+                lobes,
+            } => (
+                "half_sines",
+                (amplitude, half_period, lobes).into_pyobject(py)?,
+            ),
+            CorePulse::Rectangular {
+                amplitude,
+                duration,
+            } => ("rectangular", (amplitude, duration).into_pyobject(py)?),
+            CorePulse::Triangular {
+                amplitude,
+                duration,
+            } => ("triangular", (amplitude, duration).into_pyobject(py)?),
+            CorePulse::Ricker {
+                amplitude,
+                frequency,
+            } => ("ricker", (amplitude, frequency).into_pyobject(py)?),
+            CorePulse::MavroeidisPapageorgiou {
+                amplitude,
+                frequency,
+                gamma,
+                nu,
+            } => (
+                "mavroeidis_papageorgiou",
+                (amplitude, frequency, gamma, nu).into_pyobject(py)?,
+            ),
+        };
+        let module = py.import("rocking._rocking")?;
+        Ok((module.getattr(maker)?, args))
     }
 
     fn __repr__(&self) -> String {
