@@ -9,6 +9,7 @@ import copy
 import json
 import numbers
 import os
+from collections.abc import Iterator
 
 import numpy as np
 
@@ -321,8 +322,11 @@ oc.__doc__ = oc.__doc__.replace("{simulation}", _SIMULATION_DOC.strip())
 
 
 def _paths(records):
-    """``records`` (one or a list) as the extension's list, and whether it was one."""
-    single = not isinstance(records, (list, tuple))
+    """``records`` (one, or a list, tuple, array or iterator of them: ``Path.glob`` gives a
+    generator) as the extension's list, and whether it was one."""
+    if isinstance(records, np.ndarray):
+        records = records.tolist()
+    single = not isinstance(records, (list, tuple, Iterator))
     items = [records] if single else list(records)
     return [os.fspath(r) if isinstance(r, os.PathLike) else r for r in items], single
 
