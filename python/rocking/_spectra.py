@@ -260,8 +260,8 @@ def t1(records, *, slenderness=12.0, levels=80, level_max=10.0, sizes=120, size_
     ``records``: a :class:`rocking.Record` or a path: returns one dict (``record``, ``t1``,
     ``t1_prime``, ``beta``, ``f_min``, ``level_at_f_min``, ``size_at_f_min``, ``simulations``,
     ``seconds``, ``file`` (the path; None for a Record), ``slenderness``, ``blocks``,
-    ``dt_factor``, ``search``, ``t_p`` — the replacement sine duration of Eq. 25); a list of them:
-    a list of dicts, in order.
+    ``dt_factor``, ``search``, ``t_p`` — the replacement sine duration of Eq. 25); a list of them
+    (or a tuple, a numpy array, an iterator such as ``Path.glob``'s): a list of dicts, in order.
 
     The time step (``docs/t1-accuracy.md``), as ``rocking t1``'s ``--converge-step``,
     ``--converge-halvings`` and ``--single-step``:
@@ -338,7 +338,7 @@ def tp(records):
     ``records``: a :class:`rocking.Record` or a path: returns one dict (``record``, ``file``
     (None for a Record), ``a_max`` (m/s², the peak), ``i_max`` (m/s, the largest single-lobe
     impulse), ``lobe_start``, ``lobe_end`` (s, that lobe), ``fullness`` (``F``), ``t_p`` (s)); a
-    list of them: a list of dicts, in order."""
+    list of them (or any iterator): a list of dicts, in order."""
     items, single = _paths(records)
     rows = _rocking._tp(items)
     return rows[0] if single else rows
