@@ -217,3 +217,25 @@ def test_a_file_that_is_not_json_is_named(root):
                          cwd=root)
     assert out.returncode == 2 and "Traceback" not in out.stderr
     assert "README.md: not a JSON scene" in out.stderr, out.stderr
+
+
+def test_a_dict_scene_may_hold_pulse_and_record_objects(root, cli):
+    """rocking.simulate takes them in a dict; rocking.opensees failed with AttributeError:
+    'rocking.Pulse' object has no attribute 'get'. Each gives the events of its dict form."""
+    record = rocking.read_record(root / "examples/records/synthetic.AT2")
+    path = str(root / "examples/records/synthetic.AT2")
+    base = {"blocks": [{"width": 0.4, "height": 1.2, "mass": 500.0}], "duration": 10.0, "dt": 0.001}
+    for obj, as_dict in [(rocking.half_sine(6.0, 0.8), {"type": "half_sine", "amplitude": 6.0, "duration": 0.8}),
+                         (record.scaled_to_pga(6.0), {"type": "record", "path": path, "scale_to_pga": 6.0})]:
+        got = rocking.opensees.rigid_driver_events(dict(base, excitation=obj), cli=cli)
+        want = rocking.opensees.rigid_driver_events(dict(base, excitation=as_dict), cli=cli)
+        assert len(want) >= 1 and [(e["kind"], e["t"]) for e in got] == [(e["kind"], e["t"]) for e in want]
+        assert rocking.opensees.excitation_of(obj, root) is obj
+
+
+@needs_opensees
+def test_run_takes_a_pulse_object(root):
+    scene = dict(json.loads(scene_file(root, "single_block_half_sine.json").read_text()), duration=0.2)
+    as_dict = rocking.opensees.run(scene)
+    as_object = rocking.opensees.run(dict(scene, excitation=rocking.half_sine(6.0, 0.8)))
+    assert as_object["events"] == as_dict["events"] and as_object["summary"]["t_end"] == as_dict["summary"]["t_end"]

@@ -83,9 +83,12 @@ def _check_run_options(**options):
 
 
 def excitation_of(spec, base):
-    """The scene's ``excitation`` as a :class:`rocking.Pulse` or :class:`rocking.Record` (None
-    for ``{"type": "none"}``), with the CLI's semantics (``full_sine``'s duration is the whole
+    """The scene's ``excitation`` (a dict, or already a :class:`rocking.Pulse` or
+    :class:`rocking.Record`) as a :class:`rocking.Pulse` or :class:`rocking.Record` (None for
+    ``{"type": "none"}``), with the CLI's semantics (``full_sine``'s duration is the whole
     period, record paths relative to the scene file, ``scale_to_pga`` in m/s²)."""
+    if isinstance(spec, (rocking.Pulse, rocking.Record)):
+        return spec  # a dict scene may hold the objects, as rocking.simulate's
     kind = spec.get("type")
     args = {k: v for k, v in spec.items() if k != "type"}
     if kind == "none":

@@ -35,10 +35,13 @@ def rigid_driver_events(scene, duration=None, cli=None):
     if duration is not None:
         spec["duration"] = duration
     exc = spec.get("excitation", {})
-    if exc.get("type") == "record" and not Path(exc["path"]).is_absolute():
+    if isinstance(exc, rocking.Pulse):
+        spec["excitation"] = exc.to_dict()
+    elif isinstance(exc, dict) and exc.get("type") == "record" and not Path(exc["path"]).is_absolute():
         exc["path"] = str(base / exc["path"])
     spec.setdefault("output", {})["history"] = False
-    path = find_cli(cli)
+    # A Record object has no file for the command line: the package's driver runs it.
+    path = None if isinstance(exc, rocking.Record) else find_cli(cli)
     if path is None:
         return rocking.simulate(spec).events
     with tempfile.TemporaryDirectory() as tmp:
