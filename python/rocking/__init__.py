@@ -70,6 +70,9 @@ ERROR_CODES = dict(error_codes())
 #: The most threads a sweep (``threads=``) starts.
 _MAX_THREADS = _rocking.MAX_THREADS
 
+#: The most points of a grid given as a count (``levels=``, ``sizes=``, ``radius_n=``, …).
+_MAX_COUNT = _rocking.MAX_COUNT
+
 #: Standard gravity of the thesis (m/s²).
 GRAVITY = 9.81
 

@@ -168,6 +168,7 @@ def _t1(records: List[Union[Record, str]], *args: Any) -> List[Dict[str, Any]]: 
 STEP_TOLERANCE: float
 STEP_HALVINGS: int
 MAX_THREADS: int
+MAX_COUNT: int
 
 def _oc(shape: str, *args: Any) -> Dict[str, Any]: ...
 def _tp(records: List[Union[Record, str]]) -> List[Dict[str, Any]]: ...

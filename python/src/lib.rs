@@ -60,6 +60,8 @@ fn _rocking(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("STEP_HALVINGS", rocking::spectra::STEP_HALVINGS)?;
     // The most threads a sweep starts (`threads=`).
     m.add("MAX_THREADS", sweep::MAX_THREADS)?;
+    // The most points a grid count asks for (`levels=`, `sizes=`, …).
+    m.add("MAX_COUNT", sweep::MAX_COUNT)?;
     m.add_function(wrap_pyfunction!(spectra::_oc, m)?)?;
     m.add_function(wrap_pyfunction!(spectra::_simplified_oas, m)?)?;
     m.add_function(wrap_pyfunction!(spectra::_tp, m)?)?;

@@ -79,8 +79,9 @@ fn count_or_values(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<Result<usize,
         return usize::try_from(n)
             .ok()
             .filter(|&n| n >= 1)
-            .map(Ok)
-            .ok_or_else(|| value_error(format!("{name} = {n}: a count must be >= 1")));
+            .ok_or_else(|| value_error(format!("{name} = {n}: a count must be >= 1")))
+            .and_then(|n| crate::sweep::check_count(name, n))
+            .map(Ok);
     }
     if obj.is_instance_of::<PyFloat>() {
         // It read as a 0-d array: "has shape (), expected 1-D".
