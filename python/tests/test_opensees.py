@@ -180,7 +180,8 @@ def test_a_scene_is_checked_by_the_library_before_the_model_is_built(change, say
 
 
 @pytest.mark.parametrize("option, value", [("dt", 0.0), ("dt", -1e-4), ("dt", math.nan), ("duration", -1.0),
-                                           ("block_stiffness", -2e10), ("k_contact", 0.0), ("max_events", -1)])
+                                           ("block_stiffness", -2e10), ("k_contact", 0.0), ("max_events", -1),
+                                           ("settle", -1e-6)])
 def test_run_options_out_of_range_are_refused(option, value):
     """dt = 0 fell back to the default silently; a negative dt stepped 1e-9 s at a time for ever."""
     with pytest.raises(rocking.RockingError, match=f"{option} = "):
@@ -239,3 +240,9 @@ def test_run_takes_a_pulse_object(root):
     as_dict = rocking.opensees.run(scene)
     as_object = rocking.opensees.run(dict(scene, excitation=rocking.half_sine(6.0, 0.8)))
     assert as_object["events"] == as_dict["events"] and as_object["summary"]["t_end"] == as_dict["summary"]["t_end"]
+
+
+@needs_opensees
+def test_settle_zero_turns_the_energy_rule_off():
+    result = rocking.opensees.run(SINGLE_BLOCK, settle=0.0, duration=0.05)
+    assert result["summary"]["t_end"] == pytest.approx(0.05)

@@ -70,12 +70,12 @@ def check_scene(spec, base):
 
 
 def _check_run_options(**options):
-    """The options of :func:`run`, each finite and positive (``duration``, ``max_events`` >= 0),
-    or None for the default."""
+    """The options of :func:`run`, each finite and positive (``duration``, ``max_events`` and
+    ``settle`` >= 0), or None for the default."""
     for name, v in options.items():
         if v is None:
             continue
-        at_least_zero = name in ("duration", "max_events")
+        at_least_zero = name in ("duration", "max_events", "settle")  # settle=0: no settling by energy
         if isinstance(v, bool) or not isinstance(v, numbers.Real):
             raise TypeError(f"{name}: expected a number, got {type(v).__name__}")
         if not math.isfinite(v) or v < 0 or (v == 0 and not at_least_zero):
