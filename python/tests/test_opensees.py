@@ -181,7 +181,7 @@ def test_a_scene_is_checked_by_the_library_before_the_model_is_built(change, say
 
 @pytest.mark.parametrize("option, value", [("dt", 0.0), ("dt", -1e-4), ("dt", math.nan), ("duration", -1.0),
                                            ("block_stiffness", -2e10), ("k_contact", 0.0), ("max_events", -1),
-                                           ("settle", -1e-6)])
+                                           ("settle", -1e-6), ("solver", "fastest")])
 def test_run_options_out_of_range_are_refused(option, value):
     """dt = 0 fell back to the default silently; a negative dt stepped 1e-9 s at a time for ever."""
     with pytest.raises(rocking.RockingError, match=f"{option} = "):

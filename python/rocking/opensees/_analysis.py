@@ -206,6 +206,9 @@ def run(scene, dt=None, duration=None, max_events=None, k_contact=None, block_st
     check_scene(spec, base)
     _check_run_options(dt=dt, duration=duration, max_events=max_events, k_contact=k_contact,
                        block_stiffness=block_stiffness, settle=settle)
+    if solver not in (None, "auto", "enumerate", "projection"):
+        # It reached the impact model at the first event, after the model was built and run.
+        raise rocking._error(f"solver = {solver!r}, expected \"auto\", \"enumerate\" or \"projection\"")
     blocks = spec["blocks"]
     width = [b["width"] for b in blocks]
     height = [b["height"] for b in blocks]
