@@ -104,6 +104,15 @@ def test_records_and_pulses_pickle(root):
         assert pickle.loads(pickle.dumps(m)).to_dict() == m.to_dict()
 
 
+def test_a_record_saved_with_a_byte_order_mark(tmp_path):
+    """Windows editors and spreadsheets write a UTF-8 byte-order mark first: it was read as part
+    of the first number (`\ufeff0` is not a finite number, the mark invisible)."""
+    (tmp_path / "bom.txt").write_bytes(b"\xef\xbb\xbf0 0.1\n0.01 0.2\n0.02 -0.3\n")
+    (tmp_path / "plain.txt").write_text("0 0.1\n0.01 0.2\n0.02 -0.3\n")
+    a, b = rocking.read_record(tmp_path / "bom.txt"), rocking.read_record(tmp_path / "plain.txt")
+    assert a.dt == b.dt and a.samples.tolist() == b.samples.tolist() == [0.1, 0.2, -0.3]
+
+
 def test_pulses():
     hs = rocking.half_sine(3.0, 0.5)
     t = np.linspace(-0.1, 0.6, 71)
