@@ -316,3 +316,15 @@ def test_an_arch_and_a_colonnade_run_as_the_cli(root, tmp_path):
     first = arch.events_of("opening")[0]
     assert {k for k, s in enumerate(first["statuses"]) if s != 0} == {3, 9, 15, 20}
     assert arch.angles.shape[1] == 21
+
+
+def test_a_scene_file_saved_with_a_byte_order_mark(root, tmp_path):
+    """Windows editors write a UTF-8 byte-order mark first: refused as `expected value at line 1
+    column 1`. It runs as the same scene, and rocking.opensees reads it too."""
+    text = (root / "examples/scenes/single_block_half_sine.json").read_text()
+    (tmp_path / "marked.json").write_bytes(b"\xef\xbb\xbf" + text.encode())
+    (tmp_path / "plain.json").write_text(text)
+    assert rocking.simulate(tmp_path / "marked.json").events == rocking.simulate(tmp_path / "plain.json").events
+    from rocking import opensees
+
+    assert opensees.load_scene(tmp_path / "marked.json")[0] == json.loads(text)

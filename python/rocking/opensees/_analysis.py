@@ -40,7 +40,7 @@ def load_scene(scene):
         return scene, Path.cwd()
     path = Path(scene)
     try:
-        spec = json.loads(path.read_text())
+        spec = json.loads(path.read_text(encoding="utf-8-sig"))  # a byte-order mark or none
     except json.JSONDecodeError as e:
         raise rocking._error(f"{path}: not a JSON scene ({e})") from None
     return spec, path.resolve().parent
