@@ -173,8 +173,9 @@ def run(scene, dt=None, duration=None, max_events=None, k_contact=None, block_st
     ``scene``: a dict with the CLI's scene schema (``blocks``, ``initial_angles``,
     ``excitation``, ``impacts``, ``duration``, ``dt``, ``solver``, ``title``) or the path of a
     scene file, checked by the library's parser first (:class:`rocking.RockingError` naming the
-    field); a closed chain, the contact scheme or another gravity are refused. ``dt``: OpenSees's time step (default ``min(scene dt, 1e-4)``: the contact springs
-    need it); ``duration``, ``max_events``: stop earlier than the scene. ``k_contact``,
+    field); a closed chain, the contact scheme or another gravity are refused. ``dt``:
+    OpenSees's time step (default ``min(scene dt, 1e-4)``: the contact springs need it);
+    ``duration``, ``max_events``: stop earlier than the scene. ``k_contact``,
     ``block_stiffness``: see :meth:`ColumnModel.build`. An impact after which the kinetic energy
     is below ``settle`` times the largest seen so far, or that comes within three steps of the
     previous impact at the same interface, closes the column for good there (a ``settled``
