@@ -151,6 +151,8 @@ def _time_impact_model(
     repeats: int = 100000,
 ) -> float:
     """Benchmark hook: mean seconds per call of the library's impact model alone."""
+def _report(*fields: Any) -> Report:
+    """A Report from its fields (unpickling)."""
 
 # ---- the driver, the spectra and the design method (wrapped by rocking/_simulate.py,
 # _spectra.py, _design.py; use rocking.simulate, rocking.oas, ... rather than these) ----

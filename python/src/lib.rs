@@ -38,6 +38,7 @@ fn _rocking(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(models::opening_model, m)?)?;
     m.add_function(wrap_pyfunction!(models::check_configuration, m)?)?;
     m.add_function(wrap_pyfunction!(models::_time_impact_model, m)?)?;
+    m.add_function(wrap_pyfunction!(models::_report, m)?)?;
     m.add_function(wrap_pyfunction!(column::column_mass_matrix, m)?)?;
     m.add_function(wrap_pyfunction!(column::reduce, m)?)?;
     m.add_class::<ground::Record>()?;
