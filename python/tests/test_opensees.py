@@ -246,3 +246,22 @@ def test_run_takes_a_pulse_object(root):
 def test_settle_zero_turns_the_energy_rule_off():
     result = rocking.opensees.run(SINGLE_BLOCK, settle=0.0, duration=0.05)
     assert result["summary"]["t_end"] == pytest.approx(0.05)
+
+
+@needs_opensees
+@pytest.mark.parametrize("blocks, angles, says", [
+    # the driver overturns it at its first step
+    ([(0.202, 0.59, 88.6), (0.138, 0.793, 377.3), (0.379, 0.611, 491.5)], [0.117, 0.0, 0.0],
+     "past static tipping at interface 0"),
+    # the reaction test fails at interfaces 0 and 1; the driver's opening model opens 1 at t = 0
+    ([(0.135, 0.892, 398.9), (0.412, 0.694, 232.4), (0.329, 0.448, 495.0)], [0.0, 0.0, -0.105],
+     r"closed interface\(s\) \[0, 1\] must open"),
+])
+def test_a_column_that_does_not_stand_as_tilted_is_named(blocks, angles, says):
+    """The analysis starts from static equilibrium, which these do not have: they failed with
+    RuntimeError: OpenSees: the static gravity step failed, saying no more (found by random
+    columns, 2 of 396; the columns whose static step succeeds run as before)."""
+    scene = dict(SINGLE_BLOCK, blocks=[{"width": w, "height": h, "mass": m} for w, h, m in blocks],
+                 initial_angles=angles)
+    with pytest.raises(rocking.RockingError, match=f"initial_angles: .*{says}"):
+        rocking.opensees.run(scene)

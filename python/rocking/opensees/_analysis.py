@@ -132,6 +132,24 @@ def transient(ops, dt):
     ops.analysis("Transient")
 
 
+def why_it_does_not_stand(model, coupling, status):
+    """The error when the static gravity step failed (a RuntimeError, "the static gravity step
+    failed", said no more): the column does not stand as tilted, past static tipping at an open
+    interface or with a closed interface that must open at once (the library's reaction test on
+    OpenSees's own matrices), named under ``initial_angles``; the rigid driver runs such a start
+    (``rocking.simulate``)."""
+    tipped = [k for k in range(model.n) if model.overturned(k, status[k])]
+    if tipped:
+        why = f"the column is past static tipping at interface {tipped[0]}"
+    else:
+        mass, load, _ = coupling.reduced(0.0)
+        holds, _, must_open = rocking.check_configuration(mass, load, status)
+        why = (f"the closed interface(s) {[int(k) for k in must_open]} must open at once" if not holds else
+               "OpenSees found no static equilibrium")
+    return rocking._error(f"initial_angles: {why} as tilted, and the analysis starts from the column standing "
+                          f"under gravity (its static step failed); rocking.simulate runs such a start")
+
+
 def settle_gravity(model, tilted):
     """Gravity applied statically, with the rotations of the tilted blocks held (imposed ``sp``
     values in a temporary pattern): the contact springs start pre-compressed instead of ringing
@@ -233,7 +251,10 @@ def run(scene, dt=None, duration=None, max_events=None, k_contact=None, block_st
             model.tilt(k, a)
             status[k] = -1 if a < 0 else 1
     model.retie(status)
-    settle_gravity(model, [k for k, a in enumerate(angles) if a])
+    try:
+        settle_gravity(model, [k for k, a in enumerate(angles) if a])
+    except RuntimeError:
+        raise why_it_does_not_stand(model, coupling, status) from None
     if excitation is not None:
         ground_motion(ops, excitation, dt)
     transient(ops, dt)
