@@ -418,3 +418,21 @@ fn a_history_too_large_for_memory_is_refused_naming_output_every() {
     .collect();
     refused("history_too_large", &cases);
 }
+
+/// A scene saved with a UTF-8 byte-order mark (Windows editors) runs as the same scene without
+/// it: the mark was refused as "expected value at line 1 column 1".
+#[test]
+fn a_scene_saved_with_a_byte_order_mark_runs() {
+    let dir = fresh_dir("scene-bom");
+    let text =
+        std::fs::read_to_string(common::root().join("examples/scenes/single_block_half_sine.json"))
+            .unwrap();
+    let (plain, marked) = (dir.join("plain.json"), dir.join("marked.json"));
+    std::fs::write(&plain, &text).unwrap();
+    std::fs::write(&marked, format!("\u{feff}{text}")).unwrap();
+    let a = simulate(&plain, &dir.join("a"));
+    let b = simulate(&marked, &dir.join("b"));
+    assert!(a.ok && b.ok, "{}", b.stderr);
+    let events = |d: &str| std::fs::read_to_string(dir.join(d).join("events.jsonl")).unwrap();
+    assert_eq!(events("a"), events("b"));
+}

@@ -26,6 +26,7 @@ Every function takes any array-like (lists, tuples, numpy arrays of any numeric 
 new numpy arrays, and never modifies its arguments.
 """
 
+from . import _rocking
 from ._rocking import (
     Pulse,
     Record,
@@ -65,6 +66,12 @@ RockingError.detail = ""
 #: ``{C name: status code}`` of the C ABI (``ROCKING_OK`` = 0, ``ROCKING_ERR_*``): the values of
 #: :attr:`RockingError.code`.
 ERROR_CODES = dict(error_codes())
+
+#: The most threads a sweep (``threads=``) starts.
+_MAX_THREADS = _rocking.MAX_THREADS
+
+#: The most points of a grid given as a count (``levels=``, ``sizes=``, ``radius_n=``, …).
+_MAX_COUNT = _rocking.MAX_COUNT
 
 #: Standard gravity of the thesis (m/s²).
 GRAVITY = 9.81

@@ -11,7 +11,11 @@ def _broadcast(**arrays):
     values = []
     for name, v in arrays.items():
         try:
-            values.append(np.asarray(v, dtype=float))
+            raw = np.asarray(v)
+            # numpy reads None as NaN, "3" as 3.0 and a date as its count of days: not numbers.
+            if raw.dtype.kind not in "biufO" or (raw.dtype.kind == "O" and any(x is None for x in raw.flat)):
+                raise TypeError(f"got {v!r}")
+            values.append(np.asarray(raw, dtype=float))
         except (TypeError, ValueError) as e:
             raise TypeError(f"{name}: expected a number or an array of numbers ({e})") from None
     try:

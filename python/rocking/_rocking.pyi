@@ -151,6 +151,8 @@ def _time_impact_model(
     repeats: int = 100000,
 ) -> float:
     """Benchmark hook: mean seconds per call of the library's impact model alone."""
+def _report(*fields: Any) -> Report:
+    """A Report from its fields (unpickling)."""
 
 # ---- the driver, the spectra and the design method (wrapped by rocking/_simulate.py,
 # _spectra.py, _design.py; use rocking.simulate, rocking.oas, ... rather than these) ----
@@ -167,6 +169,8 @@ def _t1(records: List[Union[Record, str]], *args: Any) -> List[Dict[str, Any]]: 
 
 STEP_TOLERANCE: float
 STEP_HALVINGS: int
+MAX_THREADS: int
+MAX_COUNT: int
 
 def _oc(shape: str, *args: Any) -> Dict[str, Any]: ...
 def _tp(records: List[Union[Record, str]]) -> List[Dict[str, Any]]: ...

@@ -9,6 +9,7 @@ import copy
 import json
 import numbers
 import os
+from collections.abc import Iterator
 
 import numpy as np
 
@@ -20,8 +21,8 @@ _SIMULATION_DOC = """
     2: the thesis's recommended model), ``dt_factor`` a factor on the time step rule
     (``min(Δt_record/4, t_p/100, 1/(100 p))``), ``tail`` simulated time after the motion in units
     of ``1/p`` (default 2), ``hermite`` Hermite event location, ``rk4`` RK4 with it,
-    ``full_runs`` every run to its end (same verdicts, slower). ``threads``: rayon threads
-    (default every core; results identical). ``progress``: a callable ``progress(done, total)``
+    ``full_runs`` every run to its end (same verdicts, slower). ``threads``: rayon threads,
+    1 to 1024 (default every core; results identical). ``progress``: a callable ``progress(done, total)``
     called as levels (durations) finish."""
 
 
@@ -175,6 +176,10 @@ def _numbers(**args):
     """A TypeError naming the argument that is not a number (``None`` allowed for ``tail``,
     ``threads`` and ``converge_step``): the extension's own message names it on some Python
     versions only."""
+    progress = args.pop("progress", None)
+    if progress is not None and not callable(progress):
+        # It was called only once the sweep ran (TypeError: 'int' object is not callable).
+        raise TypeError(f"progress: expected a callable progress(done, total) or None, got {type(progress).__name__}")
     for name, v in args.items():
         if v is None and name in _OPTIONAL:
             continue
@@ -185,6 +190,10 @@ def _numbers(**args):
         if integral and not -2**63 <= v < 2**63:
             # The extension would raise Python's OverflowError: the package's one exception instead.
             raise _error(f"{name} = {v}: out of range")
+        if name == "threads" and not 1 <= v <= _rocking.MAX_THREADS:
+            # A negative count was Python's OverflowError (unnamed), a huge one started that many
+            # threads (the extension checks it too).
+            raise _error(f"threads = {v}: must be in 1..={_rocking.MAX_THREADS}")
 
 
 def _simulation(impacts, dt_factor, tail, hermite, rk4, full_runs):
@@ -197,7 +206,7 @@ def _grid_args(slenderness, levels, level_max, sizes, size_min, size_max, blocks
                tail, hermite, rk4, full_runs, threads, progress):
     """``grid, simulation, threads, progress`` of the extension's ``_oas`` and ``_t1``."""
     _numbers(slenderness=slenderness, level_max=level_max, size_min=size_min, size_max=size_max, blocks=blocks,
-             impacts=impacts, dt_factor=dt_factor, tail=tail, threads=threads)
+             impacts=impacts, dt_factor=dt_factor, tail=tail, threads=threads, progress=progress)
     grid = dict(slenderness=slenderness, levels=_count(levels), level_max=level_max, sizes=_count(sizes),
                 size_min=size_min, size_max=size_max, blocks=blocks, bisection=bool(bisection))
     return grid, _simulation(impacts, dt_factor, tail, hermite, rk4, full_runs), threads, progress
@@ -251,8 +260,8 @@ def t1(records, *, slenderness=12.0, levels=80, level_max=10.0, sizes=120, size_
     ``records``: a :class:`rocking.Record` or a path: returns one dict (``record``, ``t1``,
     ``t1_prime``, ``beta``, ``f_min``, ``level_at_f_min``, ``size_at_f_min``, ``simulations``,
     ``seconds``, ``file`` (the path; None for a Record), ``slenderness``, ``blocks``,
-    ``dt_factor``, ``search``, ``t_p`` — the replacement sine duration of Eq. 25); a list of them:
-    a list of dicts, in order.
+    ``dt_factor``, ``search``, ``t_p`` — the replacement sine duration of Eq. 25); a list of them
+    (or a tuple, a numpy array, an iterator such as ``Path.glob``'s): a list of dicts, in order.
 
     The time step (``docs/t1-accuracy.md``), as ``rocking t1``'s ``--converge-step``,
     ``--converge-halvings`` and ``--single-step``:
@@ -304,7 +313,7 @@ def oc(shape="half-sine", *, blocks=1, slenderness=12.0, size=1.0, ptp=40, ptp_m
 
     Returns an :class:`Oc`."""
     _numbers(blocks=blocks, slenderness=slenderness, size=size, ptp_min=ptp_min, ptp_max=ptp_max, level_max=level_max,
-             impacts=impacts, dt_factor=dt_factor, tail=tail, threads=threads)
+             impacts=impacts, dt_factor=dt_factor, tail=tail, threads=threads, progress=progress)
     return Oc(_rocking._oc(shape, blocks, slenderness, size, _count(ptp), ptp_min, ptp_max, _count(levels), level_max,
                            _simulation(impacts, dt_factor, tail, hermite, rk4, full_runs), threads, progress))
 
@@ -313,8 +322,11 @@ oc.__doc__ = oc.__doc__.replace("{simulation}", _SIMULATION_DOC.strip())
 
 
 def _paths(records):
-    """``records`` (one or a list) as the extension's list, and whether it was one."""
-    single = not isinstance(records, (list, tuple))
+    """``records`` (one, or a list, tuple, array or iterator of them: ``Path.glob`` gives a
+    generator) as the extension's list, and whether it was one."""
+    if isinstance(records, np.ndarray):
+        records = records.tolist()
+    single = not isinstance(records, (list, tuple, Iterator))
     items = [records] if single else list(records)
     return [os.fspath(r) if isinstance(r, os.PathLike) else r for r in items], single
 
@@ -326,7 +338,7 @@ def tp(records):
     ``records``: a :class:`rocking.Record` or a path: returns one dict (``record``, ``file``
     (None for a Record), ``a_max`` (m/s², the peak), ``i_max`` (m/s, the largest single-lobe
     impulse), ``lobe_start``, ``lobe_end`` (s, that lobe), ``fullness`` (``F``), ``t_p`` (s)); a
-    list of them: a list of dicts, in order."""
+    list of them (or any iterator): a list of dicts, in order."""
     items, single = _paths(records)
     rows = _rocking._tp(items)
     return rows[0] if single else rows

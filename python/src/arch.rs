@@ -37,6 +37,7 @@ fn count(name: &str, n: i64) -> PyResult<usize> {
         .ok()
         .filter(|&n| n >= 1)
         .ok_or_else(|| value_error(format!("{name} = {n}: must be >= 1")))
+        .and_then(|n| crate::sweep::check_count(name, n))
 }
 
 impl Family {

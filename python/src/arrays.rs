@@ -47,23 +47,33 @@ pub fn floats(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<Floats> {
             "{name}: expected an array-like of numbers, got None"
         )));
     }
-    // numpy casts a complex array to float64 with a warning, dropping the imaginary parts:
-    // refuse it instead (a list of complex numbers is refused by numpy itself).
-    let kind = obj
-        .getattr("dtype")
-        .and_then(|d| d.getattr("kind"))
-        .and_then(|k| k.extract::<String>());
-    if kind.is_ok_and(|k| k == "c") {
-        return Err(PyTypeError::new_err(format!(
-            "{name}: complex values, expected real numbers"
-        )));
-    }
+    // What numpy makes of it as it is: numbers (bool, int, float; objects, which float64 takes
+    // one by one) are converted. numpy would also convert strings ("1"), dates and durations
+    // (their counts of days, seconds) and, with a warning dropping the imaginary parts, complex
+    // values: refused.
     let asarray = ASARRAY.import(py, "numpy", "asarray")?;
-    let converted = asarray.call1((obj, "float64")).map_err(|e| {
+    let unreadable = |e: PyErr| {
         PyTypeError::new_err(format!(
             "{name}: cannot be read as an array of float64 ({e})"
         ))
-    })?;
+    };
+    let raw = asarray.call1((obj,)).map_err(unreadable)?;
+    let kind: String = raw.getattr("dtype")?.getattr("kind")?.extract()?;
+    match kind.as_str() {
+        "b" | "i" | "u" | "f" | "O" => {}
+        "c" => {
+            return Err(PyTypeError::new_err(format!(
+                "{name}: complex values, expected real numbers"
+            )))
+        }
+        _ => {
+            let dtype = raw.getattr("dtype")?.str()?;
+            return Err(PyTypeError::new_err(format!(
+                "{name}: values of dtype {dtype} (strings, dates or durations) are not numbers"
+            )));
+        }
+    }
+    let converted = asarray.call1((raw, "float64")).map_err(unreadable)?;
     let array = converted
         .cast_into::<PyArrayDyn<f64>>()
         .map_err(|_| PyTypeError::new_err(format!("{name}: not an array of float64")))?;

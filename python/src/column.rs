@@ -23,7 +23,7 @@ fn optional_vector(obj: Option<&Bound<'_, PyAny>>, name: &str) -> PyResult<Optio
 /// ``m (w² + h²) / 12``). ``contact_width``: of the interface under each block (default
 /// ``min(w_{k-1}, w_k)``). ``phi``: the ``2n`` DOF angles ``[phĭ_0 … phĭ_{n-1}, phî_0 …
 /// phî_{n-1}]`` (default: the straight column). ``ground_acceleration`` (m/s², +x to the
-/// right) and ``gravity`` (m/s²) make the load.
+/// right) and ``gravity`` (m/s², positive, acting downwards) make the load.
 ///
 /// Returns ``(mass_matrix, load)``, new arrays.
 #[pyfunction]

@@ -6,7 +6,7 @@ use std::path::PathBuf;
 use numpy::ndarray::{ArrayD, IxDyn};
 use numpy::IntoPyArray;
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyFloat, PyInt};
+use pyo3::types::{PyDict, PyFloat, PyInt, PyTuple};
 use rocking::ground::excitation::Pulse as CorePulse;
 use rocking::ground::records::{self, PlainFormat, Record as CoreRecord};
 use rocking::model::column::GRAVITY;
@@ -15,9 +15,12 @@ use rocking::validate;
 use crate::arrays::{any_vector, floats, new_vector};
 use crate::errors::value_error;
 
-/// `f` on a float, or elementwise on an array-like of times (a new array of the same shape).
+/// `f` on a float, or elementwise on an array-like of times (a new array of the same shape). A
+/// NaN time gives NaN (the motions compare the time with their start and end, which a NaN fails:
+/// it gave 0).
 fn evaluate<'py>(t: &Bound<'py, PyAny>, f: impl Fn(f64) -> f64) -> PyResult<Bound<'py, PyAny>> {
     let py = t.py();
+    let f = |x: f64| if x.is_nan() { f64::NAN } else { f(x) };
     if t.is_instance_of::<PyFloat>() || t.is_instance_of::<PyInt>() {
         let x: f64 = t.extract()?;
         return Ok(PyFloat::new(py, f(x)).into_any());
@@ -44,6 +47,12 @@ impl Record {
     #[pyo3(signature = (samples, dt, name = "record"))]
     fn new(samples: &Bound<'_, PyAny>, dt: f64, name: &str) -> PyResult<Record> {
         let samples = any_vector(samples, "samples")?;
+        if samples.is_empty() {
+            // As read_record refuses an empty file: no ground motion at all ran as a record.
+            return Err(value_error(
+                "samples: no sample, a record needs at least one",
+            ));
+        }
         let inner = CoreRecord::new(name, dt, samples).map_err(value_error)?;
         Ok(Record { inner })
     }
@@ -109,6 +118,17 @@ impl Record {
 
     fn __len__(&self) -> usize {
         self.inner.samples.len()
+    }
+
+    /// Pickling (multiprocessing, ``copy.deepcopy``): rebuilt from its samples, step and name.
+    fn __reduce__<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> (Bound<'py, PyAny>, (Bound<'py, PyAny>, f64, String)) {
+        (
+            py.get_type::<Record>().into_any(),
+            (self.samples(py), self.inner.dt, self.inner.name.clone()),
+        )
     }
 
     fn __repr__(&self) -> String {
@@ -263,6 +283,46 @@ impl Pulse {
             }
         }
         Ok(d)
+    }
+
+    /// Pickling (multiprocessing, ``copy.deepcopy``): rebuilt by the function that makes it.
+    fn __reduce__<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyTuple>)> {
+        let (maker, args) = match self.inner {
+            CorePulse::HalfSines {
+                amplitude,
+                half_period,
+                lobes,
+            } => (
+                "half_sines",
+                (amplitude, half_period, lobes).into_pyobject(py)?,
+            ),
+            CorePulse::Rectangular {
+                amplitude,
+                duration,
+            } => ("rectangular", (amplitude, duration).into_pyobject(py)?),
+            CorePulse::Triangular {
+                amplitude,
+                duration,
+            } => ("triangular", (amplitude, duration).into_pyobject(py)?),
+            CorePulse::Ricker {
+                amplitude,
+                frequency,
+            } => ("ricker", (amplitude, frequency).into_pyobject(py)?),
+            CorePulse::MavroeidisPapageorgiou {
+                amplitude,
+                frequency,
+                gamma,
+                nu,
+            } => (
+                "mavroeidis_papageorgiou",
+                (amplitude, frequency, gamma, nu).into_pyobject(py)?,
+            ),
+        };
+        let module = py.import("rocking._rocking")?;
+        Ok((module.getattr(maker)?, args))
     }
 
     fn __repr__(&self) -> String {

@@ -38,6 +38,7 @@ fn _rocking(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(models::opening_model, m)?)?;
     m.add_function(wrap_pyfunction!(models::check_configuration, m)?)?;
     m.add_function(wrap_pyfunction!(models::_time_impact_model, m)?)?;
+    m.add_function(wrap_pyfunction!(models::_report, m)?)?;
     m.add_function(wrap_pyfunction!(column::column_mass_matrix, m)?)?;
     m.add_function(wrap_pyfunction!(column::reduce, m)?)?;
     m.add_class::<ground::Record>()?;
@@ -58,6 +59,10 @@ fn _rocking(m: &Bound<'_, PyModule>) -> PyResult<()> {
     // The defaults of `t1`'s convergence in the step (`rocking t1 --converge-step`'s).
     m.add("STEP_TOLERANCE", rocking::spectra::STEP_TOLERANCE)?;
     m.add("STEP_HALVINGS", rocking::spectra::STEP_HALVINGS)?;
+    // The most threads a sweep starts (`threads=`).
+    m.add("MAX_THREADS", sweep::MAX_THREADS)?;
+    // The most points a grid count asks for (`levels=`, `sizes=`, …).
+    m.add("MAX_COUNT", sweep::MAX_COUNT)?;
     m.add_function(wrap_pyfunction!(spectra::_oc, m)?)?;
     m.add_function(wrap_pyfunction!(spectra::_simplified_oas, m)?)?;
     m.add_function(wrap_pyfunction!(spectra::_tp, m)?)?;

@@ -103,6 +103,33 @@ impl Report {
         Ok(d)
     }
 
+    /// Pickling (multiprocessing, ``copy.deepcopy``): rebuilt from its fields.
+    #[allow(clippy::type_complexity)]
+    fn __reduce__<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(
+        Bound<'py, PyAny>,
+        (&'static str, bool, bool, u32, u64, u64, f64, f64, f64, f64),
+    )> {
+        let maker = py.import("rocking._rocking")?.getattr("_report")?;
+        Ok((
+            maker,
+            (
+                self.solver,
+                self.changed,
+                self.tie,
+                self.impacts_applied,
+                self.configurations_examined,
+                self.admissible,
+                self.kinetic_before,
+                self.kinetic_after,
+                self.runner_up,
+                self.condition_estimate,
+            ),
+        ))
+    }
+
     fn __repr__(&self) -> String {
         format!(
             "Report(solver={:?}, changed={}, tie={}, impacts_applied={}, \
@@ -120,6 +147,46 @@ impl Report {
             self.condition_estimate
         )
     }
+}
+
+/// A `Report` from its fields, in the order of its `__reduce__` (unpickling).
+#[pyfunction]
+#[allow(clippy::too_many_arguments)]
+pub fn _report(
+    solver: &str,
+    changed: bool,
+    tie: bool,
+    impacts_applied: u32,
+    configurations_examined: u64,
+    admissible: u64,
+    kinetic_before: f64,
+    kinetic_after: f64,
+    runner_up: f64,
+    condition_estimate: f64,
+) -> PyResult<Report> {
+    let solver = match solver {
+        "auto" => "auto",
+        "enumerate" => "enumerate",
+        "projection" => "projection",
+        other => {
+            return Err(error(
+                ErrorKind::InvalidOptions,
+                format!("solver = {other:?}, expected \"auto\", \"enumerate\" or \"projection\""),
+            ))
+        }
+    };
+    Ok(Report {
+        solver,
+        changed,
+        tie,
+        impacts_applied,
+        configurations_examined,
+        admissible,
+        kinetic_before,
+        kinetic_after,
+        runner_up,
+        condition_estimate,
+    })
 }
 
 fn py_bool(b: bool) -> &'static str {

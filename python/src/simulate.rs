@@ -109,7 +109,13 @@ pub fn _simulate<'py>(
     };
     let kept = outcome.history.as_ref().filter(|_| scene.output.history);
     history_arrays(&d, kept.unwrap_or(&empty))?;
-    d.set_item("events", to_python(py, &outcome.events)?)?;
+    // As the CLI (no events.jsonl) and the contact and loop runs: none without output.events.
+    let events = if scene.output.events {
+        &outcome.events[..]
+    } else {
+        &[]
+    };
+    d.set_item("events", to_python(py, &events)?)?;
     let summary = Summary::of(&scene, scene_name, &outcome, wall);
     d.set_item("summary", to_python(py, &summary)?)?;
     d.set_item("title", &scene.title)?;

@@ -9,8 +9,9 @@
 use std::path::PathBuf;
 use std::time::Instant;
 
+use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
-use pyo3::types::PyInt;
+use pyo3::types::{PyFloat, PyInt};
 use rocking::driver::{EventLocator, Integrator};
 use rocking::ground::records::{self, PlainFormat, Record as CoreRecord};
 use rocking::model::single_block::EquivalentBlock;
@@ -78,10 +79,24 @@ fn count_or_values(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<Result<usize,
         return usize::try_from(n)
             .ok()
             .filter(|&n| n >= 1)
-            .map(Ok)
-            .ok_or_else(|| value_error(format!("{name} = {n}: a count must be >= 1")));
+            .ok_or_else(|| value_error(format!("{name} = {n}: a count must be >= 1")))
+            .and_then(|n| crate::sweep::check_count(name, n))
+            .map(Ok);
     }
-    Ok(Err(any_vector(obj, name)?))
+    if obj.is_instance_of::<PyFloat>() {
+        // It read as a 0-d array: "has shape (), expected 1-D".
+        return Err(PyTypeError::new_err(format!(
+            "{name} = {obj}: a count must be an integer (or give the values as a 1-D array)"
+        )));
+    }
+    let values = any_vector(obj, name)?;
+    if values.is_empty() {
+        // A spectrum of no level, a curve of no duration: nothing computed, silently.
+        return Err(value_error(format!(
+            "{name}: no value; give a count >= 1 or the values"
+        )));
+    }
+    Ok(Err(values))
 }
 
 /// A `Record`, or the path of a record file read as the CLI reads it (`.AT2` in g, plain text in

@@ -19,6 +19,25 @@ use crate::errors::value_error;
 /// How often the waiting thread checks for signals and reports progress.
 const POLL: Duration = Duration::from_millis(50);
 
+/// The most threads a sweep starts: a count far beyond the machine's cores only costs threads,
+/// and a million of them got the process killed (SIGKILL) while rayon started them.
+pub const MAX_THREADS: usize = 1024;
+
+/// The most points a grid count (`levels=`, `sizes=`, `ptp=`, `radius_n=`, …) asks for: the
+/// thesis's grid is 80 × 120; `levels=10**9` allocated an 8 GB grid (an abort under a memory
+/// limit, the caller with it).
+pub const MAX_COUNT: usize = 100_000;
+
+/// A grid count `n` (already ≥ 1) within [`MAX_COUNT`], named.
+pub fn check_count(name: &str, n: usize) -> PyResult<usize> {
+    if n > MAX_COUNT {
+        return Err(value_error(format!(
+            "{name} = {n}: a grid of at most {MAX_COUNT} points (one simulation or more each)"
+        )));
+    }
+    Ok(n)
+}
+
 /// How a sweep runs: on how many threads, and whom it tells how far it got.
 pub struct Runner {
     /// Threads (`None`: rayon's global pool, every core).
@@ -35,7 +54,11 @@ impl Runner {
         F: Fn(usize) -> T + Sync,
     {
         let pool = match self.threads {
-            Some(0) => return Err(value_error("threads = 0: must be at least 1")),
+            Some(t) if !(1..=MAX_THREADS).contains(&t) => {
+                return Err(value_error(format!(
+                    "threads = {t}: must be in 1..={MAX_THREADS}"
+                )))
+            }
             Some(t) => Some(
                 rayon::ThreadPoolBuilder::new()
                     .num_threads(t)

@@ -132,3 +132,18 @@ def test_simulate_spectra_and_design_leave_their_arguments_alone(root):
     assert not np.shares_memory(w["height"], heights)
     w["height"][0] = -1.0  # the result is the caller's to write
     assert heights[0] == 10.0
+
+
+def test_a_report_pickles(case):
+    """A worker process's impact_model result goes back through pickle: `cannot pickle
+    'rocking.Report' object`. It comes back with every field, NaN runner_up included."""
+    import copy
+    import pickle
+
+    M, q, c = case
+    _, _, report = rocking.impact_model(M, c["status"], c["velocity"], c["closing"])
+    Mt, qt = rocking.column_mass_matrix([0.1, 0.1], [0.3, 0.3], [15, 15], ground_acceleration=-4.0)
+    _, _, opening = rocking.opening_model(Mt, qt, [0, 0], solver="projection")
+    for r in [report, opening]:
+        for back in [pickle.loads(pickle.dumps(r)), copy.deepcopy(r)]:
+            assert type(back) is type(r) and repr(back) == repr(r) and back.to_dict() == r.to_dict()

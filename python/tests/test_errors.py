@@ -138,6 +138,9 @@ def test_opening_model_errors(two_blocks, change, c_name, detail):
     (dict(phi=[0.0, 0.0, 0.0]), "ROCKING_ERR_INVALID_SIZE", "phi has 3 values, expected 4"),
     (dict(ground_acceleration=math.inf), "ROCKING_ERR_NOT_FINITE", "ground_acceleration = inf"),
     (dict(width=[[0.1, 0.1]]), "ROCKING_ERR_INVALID_SIZE", "width has shape (1, 2), expected 1-D"),
+    # documented positive; -9.81 turned the weight's load upside down, silently
+    (dict(gravity=-9.81), "ROCKING_ERR_INVALID_GEOMETRY", "gravity = -9.81: must be greater than zero"),
+    (dict(gravity=0.0), "ROCKING_ERR_INVALID_GEOMETRY", "gravity = 0: must be greater than zero"),
 ])
 def test_column_mass_matrix_errors(change, c_name, detail):
     args = dict(width=[0.1, 0.1], height=[0.3, 0.3], mass=[15.0, 15.0])
@@ -180,6 +183,33 @@ def test_not_an_array_is_a_type_error(two_blocks):
         with pytest.raises(TypeError) as info:
             rocking.impact_model(**impact_args(M, **bad))
         assert next(iter(bad)) in str(info.value)
+
+
+def test_strings_and_dates_are_not_numbers(two_blocks):
+    """numpy reads the strings "0" and "-1" and a date (days since 1970) as float64: they were
+    taken as numbers. Refused, naming the argument (the statuses, masses, rates, records, times
+    and design arguments alike)."""
+    M, _ = two_blocks
+    for bad in [dict(velocity=["0", "0", "0", "-1"]), dict(velocity=np.array(["0", "0", "0", "-1"])),
+                dict(velocity=np.array([b"0", b"0", b"0", b"-1"])), dict(status=np.array(["0", "1"])),
+                dict(mass=M.astype(str)), dict(velocity=np.array(["2020-01-01"] * 4, dtype="datetime64[D]")),
+                dict(velocity=np.array([0, 0, 0, -1], dtype="timedelta64[s]"))]:
+        with pytest.raises(TypeError, match=f"{next(iter(bad))}: ") as info:
+            rocking.impact_model(**impact_args(M, **bad))
+        assert "not numbers" in str(info.value), info.value
+    with pytest.raises(TypeError, match="width: "):
+        rocking.column_mass_matrix(["0.1"], [0.3], [15])
+    with pytest.raises(TypeError, match="samples: "):
+        rocking.Record(np.array(["1", "2"]), 0.01)
+    with pytest.raises(TypeError, match="t: "):
+        rocking.half_sine(1.0, 1.0).acceleration("0.5")
+    for name in ["height", "pga", "t1"]:
+        args = dict(height=10.0, pga=3.0, t1=0.25)
+        for bad in [None, "3", ["3"], [3.0, None]]:
+            with pytest.raises(TypeError, match=f"{name}: "):
+                rocking.design_width(**dict(args, **{name: bad}))
+    with pytest.raises(TypeError, match="width: "):
+        rocking.design_check(width=None, height=10.0, pga=3.0, t1=0.25)
 
 
 def test_codes_and_messages_are_the_c_abis(cabi):

@@ -154,6 +154,27 @@ def test_oas_errors_name_the_argument(root, args, field):
         rocking.oas(root / RECORD, **{"levels": 2, "sizes": 3, **args})
 
 
+@pytest.mark.parametrize("call, field", [
+    (lambda r: rocking.oas(r, levels=[], sizes=3), "levels: no value"),
+    (lambda r: rocking.oas(r, levels=2, sizes=np.zeros(0)), "sizes: no value"),
+    (lambda r: rocking.t1(r, levels=(), sizes=3, converge_step=None), "levels: no value"),
+    (lambda r: rocking.oc(ptp=[], levels=2), "ptp: no value"),
+    (lambda r: rocking.oc(ptp=2, levels=[]), "levels: no value"),
+])
+def test_an_empty_grid_is_refused(root, call, field):
+    """levels=[] ran a spectrum of no level (t1 None, 0 simulations), silently."""
+    with pytest.raises(rocking.RockingError, match=field):
+        call(root / RECORD)
+
+
+@pytest.mark.parametrize("args, field", [(dict(levels=4.0), "levels = 4.0"), (dict(sizes=6.0), "sizes = 6.0"),
+                                         (dict(sizes=np.float64(6)), "sizes = 6.0")])
+def test_a_count_that_is_a_float_is_named_as_a_count(root, args, field):
+    """sizes=6.0 said `sizes has shape (), expected 1-D`: a count must be an integer."""
+    with pytest.raises(TypeError, match=rf"{field}: a count must be an integer"):
+        rocking.oas(root / RECORD, **{"levels": 2, "sizes": 3, **args})
+
+
 def test_other_errors(root, tmp_path):
     with pytest.raises(FileNotFoundError):
         rocking.oas(tmp_path / "nowhere.AT2")

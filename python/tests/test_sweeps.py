@@ -101,3 +101,51 @@ def test_parallel_sweeps_equal_the_serial_ones_bit_for_bit(root):
         np.testing.assert_array_equal(other.unsafe, one.unsafe)
         np.testing.assert_array_equal(bits(other.envelope), bits(one.envelope))
         np.testing.assert_array_equal(bits(other.t_p), bits(one.t_p))
+
+
+SWEEPS = {
+    "oas": lambda **kw: rocking.oas(RECORD, levels=2, sizes=3, **kw),
+    "t1": lambda **kw: rocking.t1(RECORD, levels=2, sizes=3, converge_step=None, **kw),
+    "oc": lambda **kw: rocking.oc("half-sine", ptp=2, levels=2, **kw),
+    "arch_oas": lambda **kw: rocking.arch_oas(RECORD, voussoirs=4, radius_n=2, level_n=2, **kw),
+    "arch_oc": lambda **kw: rocking.arch_oc("half-sine", voussoirs=4, ptp_n=2, level_n=2, **kw),
+}
+
+
+@pytest.mark.parametrize("sweep", sorted(SWEEPS))
+@pytest.mark.parametrize("threads", [-1, 0, rocking._MAX_THREADS + 1, 10**6])
+def test_a_thread_count_out_of_range_is_refused_before_any_thread_starts(root, monkeypatch, sweep, threads):
+    """threads=-1 was an OverflowError that did not name it; threads=10**6 had rayon start a
+    million threads and the process was killed (SIGKILL), the caller with it."""
+    monkeypatch.chdir(root)
+    with pytest.raises(rocking.RockingError, match=rf"threads = {threads}: must be"):
+        SWEEPS[sweep](threads=threads)
+
+
+@pytest.mark.parametrize("sweep", sorted(SWEEPS))
+def test_a_progress_that_is_not_callable_is_refused_before_the_sweep(root, monkeypatch, sweep):
+    monkeypatch.chdir(root)
+    with pytest.raises(TypeError, match="progress: expected a callable"):
+        SWEEPS[sweep](progress=3)
+
+
+@pytest.mark.parametrize("call, name", [
+    (lambda n: rocking.oas(RECORD, levels=n, sizes=2), "levels"),
+    (lambda n: rocking.oas(RECORD, levels=2, sizes=n), "sizes"),
+    (lambda n: rocking.t1(RECORD, levels=n, sizes=2, converge_step=None), "levels"),
+    (lambda n: rocking.oc("half-sine", ptp=n, levels=2), "ptp"),
+    (lambda n: rocking.oc("half-sine", ptp=2, levels=n), "levels"),
+    (lambda n: rocking.arch_oas(RECORD, voussoirs=4, radius_n=n, level_n=2), "radius_n"),
+    (lambda n: rocking.arch_oas(RECORD, voussoirs=4, radius_n=2, level_n=n), "level_n"),
+    (lambda n: rocking.arch_oc("half-sine", voussoirs=4, ptp_n=n, level_n=2), "ptp_n"),
+    (lambda n: rocking.arch_oc("half-sine", voussoirs=4, ptp_n=2, level_n=n), "level_n"),
+])
+def test_a_grid_count_too_large_is_refused_before_any_work(root, monkeypatch, call, name):
+    """levels=10**9 allocated the 8 GB grid: under a memory limit the process aborted (memory
+    allocation failed), the caller with it; without one it ran for ever."""
+    monkeypatch.chdir(root)
+    n = rocking._MAX_COUNT + 1
+    with pytest.raises(rocking.RockingError, match=rf"{name} = {n}: .*at most {rocking._MAX_COUNT}"):
+        call(n)
+    with pytest.raises(rocking.RockingError, match=rf"{name} = {10**9}: "):
+        call(10**9)

@@ -6,6 +6,7 @@ import json
 import os
 import signal
 
+import numpy as np
 import pytest
 
 import rocking
@@ -211,3 +212,18 @@ def test_oas_bad_converge_step_names_it(root):
         rocking.oas(root / RECORD, converge_step=-0.1, **GRID)
     with pytest.raises(TypeError, match="^converge_step"):
         rocking.oas(root / RECORD, converge_step="0.1", **GRID)
+
+
+def test_records_from_a_glob_or_an_array(root, tmp_path):
+    """Path.glob gives a generator and numpy an array of paths: each was taken for one record
+    ("record: expected a rocking.Record or the path of a record file")."""
+    import shutil
+
+    for name in ("a.AT2", "b.AT2"):
+        shutil.copy(root / "examples/records/synthetic.AT2", tmp_path / name)
+    grid = dict(levels=2, sizes=3, converge_step=None)
+    want = [r["t1"] for r in rocking.t1(sorted(tmp_path.glob("*.AT2")), **grid)]
+    assert len(want) == 2
+    assert [r["t1"] for r in rocking.t1(iter(sorted(tmp_path.glob("*.AT2"))), **grid)] == want
+    assert [r["t1"] for r in rocking.t1(np.array([str(p) for p in sorted(tmp_path.glob("*.AT2"))]), **grid)] == want
+    assert [r["record"] for r in rocking.tp(p for p in sorted(tmp_path.glob("*.AT2")))] == ["a", "b"]

@@ -37,8 +37,8 @@ pub struct InterfaceSystem {
 ///
 /// Checks, in this order: array lengths (`InvalidSize`), `phi` finite (`NotFinite`),
 /// `ground_acceleration` and `gravity` finite (`NotFinite`), at most one non-zero DOF per
-/// interface with the admissible sign (`InvalidAngles`), the blocks (`InvalidGeometry`), and a
-/// finite result (`Overflow`).
+/// interface with the admissible sign (`InvalidAngles`), the blocks and a positive `gravity`
+/// (`InvalidGeometry`), and a finite result (`Overflow`).
 pub fn column_system(
     blocks: &BlockArrays<'_>,
     phi: Option<&[f64]>,
@@ -88,6 +88,13 @@ pub fn column_system(
             .collect(),
     )
     .map_err(|e| RockingError::new(ErrorKind::InvalidGeometry, e.to_string()))?;
+    if gravity <= 0.0 {
+        // Documented positive: a negative one turned the weight's load upside down, silently.
+        return Err(RockingError::new(
+            ErrorKind::InvalidGeometry,
+            format!("gravity = {gravity}: must be greater than zero (m/s², acting downwards)"),
+        ));
+    }
     let pose = column.pose(phi);
     let system = InterfaceSystem {
         mass: column.mass_matrix(&pose),
@@ -187,6 +194,36 @@ mod tests {
         );
         assert_eq!(k, ErrorKind::InvalidGeometry);
         assert!(d.contains("block 1: mass = -1"), "{d}");
+    }
+
+    /// Gravity is documented positive (m/s², downwards) but was only checked finite: -9.81
+    /// turned the load of the weight upside down and 0 dropped it, silently.
+    #[test]
+    fn gravity_must_be_positive() {
+        let (w, h, m) = two_granite();
+        let ok = BlockArrays {
+            width: &w,
+            height: &h,
+            mass: &m,
+            inertia: None,
+            contact_width: None,
+        };
+        for g in [-GRAVITY, 0.0, -0.0] {
+            let e = column_system(&ok, None, 0.0, g).unwrap_err();
+            assert_eq!(e.kind, ErrorKind::InvalidGeometry, "{g}");
+            assert!(
+                e.detail
+                    .starts_with(&format!("gravity = {g}: must be greater than zero")),
+                "{}",
+                e.detail
+            );
+        }
+        let e = column_system(&ok, None, 0.0, f64::NAN).unwrap_err();
+        assert_eq!(
+            (e.kind, e.detail.as_str()),
+            (ErrorKind::NotFinite, "gravity = NaN")
+        );
+        assert!(column_system(&ok, None, 0.0, 1.62).is_ok());
     }
 
     #[test]

@@ -246,7 +246,9 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
 fn read(path: &Path) -> Result<(SceneSpec, &Path), SceneError> {
     let text = std::fs::read_to_string(path)
         .map_err(|e| SceneError(format!("cannot read {}: {e}", path.display())))?;
-    let spec = parse(&text).map_err(|e| SceneError(format!("{}: {e}", path.display())))?;
+    // Without the byte-order mark Windows editors write first (serde refused it at 1:1).
+    let text = text.strip_prefix('\u{feff}').unwrap_or(&text);
+    let spec = parse(text).map_err(|e| SceneError(format!("{}: {e}", path.display())))?;
     Ok((spec, path.parent().unwrap_or(Path::new("."))))
 }
 

@@ -1,6 +1,8 @@
 """The transient analysis: OpenSees integrates, the library decides (docs/opensees.md §2), with
 event detection and step control, from a CLI scene (blocks, initial angles, excitation)."""
 import json
+import math
+import numbers
 import os
 from pathlib import Path
 
@@ -37,21 +39,66 @@ def load_scene(scene):
     if isinstance(scene, dict):
         return scene, Path.cwd()
     path = Path(scene)
-    return json.loads(path.read_text()), path.resolve().parent
+    try:
+        spec = json.loads(path.read_text(encoding="utf-8-sig"))  # a byte-order mark or none
+    except json.JSONDecodeError as e:
+        raise rocking._error(f"{path}: not a JSON scene ({e})") from None
+    return spec, path.resolve().parent
+
+
+def check_scene(spec, base):
+    """The scene checked by the library's parser (every field, with its messages: a scene run
+    for no time), and refused when it is not what this model integrates: a column of blocks on
+    the thesis's driver under standard gravity (an arch or a colonnade, drums that slide or fly,
+    another gravity were run as something else or failed with a KeyError)."""
+    result = rocking.simulate(dict(spec, duration=0.0), base=os.fspath(base))
+    if not isinstance(result, rocking.Simulation):
+        what = "a closed chain (arch, colonnade)" if isinstance(result, rocking.LoopSimulation) else \
+            "the contact scheme (scheme, on_sliding, on_tension: drums that slide or fly)"
+        raise rocking._error(f"scene: rocking.opensees models a column of blocks on the thesis's driver, not "
+                             f"{what}; run it with rocking.simulate")
+    gravity = spec.get("gravity", rocking.GRAVITY)
+    if gravity != rocking.GRAVITY:
+        raise rocking._error(f"gravity = {gravity}: rocking.opensees models standard gravity ({rocking.GRAVITY} m/s2)")
+    for k, b in enumerate(spec["blocks"]):
+        w, h, m = b["width"], b["height"], b["mass"]
+        inertia = b.get("inertia") or m * (w * w + h * h) / 12.0
+        if m - 4.0 * inertia / (h * h) <= 0.0:
+            # The three mass points of thesis Appendix C: the centre's would be negative.
+            raise rocking._error(f"blocks[{k}]: inertia {inertia:g} kg m2 too large for three mass points on the "
+                                 f"block's axis (4 I / h^2 >= mass: a block much wider than tall)")
+
+
+def _check_run_options(**options):
+    """The options of :func:`run`, each finite and positive (``duration``, ``max_events`` and
+    ``settle`` >= 0), or None for the default."""
+    for name, v in options.items():
+        if v is None:
+            continue
+        at_least_zero = name in ("duration", "max_events", "settle")  # settle=0: no settling by energy
+        if isinstance(v, bool) or not isinstance(v, numbers.Real):
+            raise TypeError(f"{name}: expected a number, got {type(v).__name__}")
+        if not math.isfinite(v) or v < 0 or (v == 0 and not at_least_zero):
+            raise rocking._error(f"{name} = {v}: must be a finite number {'>= 0' if at_least_zero else 'greater than zero'}")
 
 
 def excitation_of(spec, base):
-    """The scene's ``excitation`` as a :class:`rocking.Pulse` or :class:`rocking.Record` (None
-    for ``{"type": "none"}``), with the CLI's semantics (``full_sine``'s duration is the whole
+    """The scene's ``excitation`` (a dict, or already a :class:`rocking.Pulse` or
+    :class:`rocking.Record`) as a :class:`rocking.Pulse` or :class:`rocking.Record` (None for
+    ``{"type": "none"}``), with the CLI's semantics (``full_sine``'s duration is the whole
     period, record paths relative to the scene file, ``scale_to_pga`` in m/s²)."""
+    if isinstance(spec, (rocking.Pulse, rocking.Record)):
+        return spec  # a dict scene may hold the objects, as rocking.simulate's
     kind = spec.get("type")
     args = {k: v for k, v in spec.items() if k != "type"}
     if kind == "none":
         return None
     if kind == "record":
         path = Path(args["path"])
+        # units None: the reader's default, m/s2 for plain text and g for a PEER .AT2 (which
+        # refuses any other units).
         record = rocking.read_record(path if path.is_absolute() else base / path, dt=args.get("dt"),
-                                     units=args.get("units") or "m/s2")
+                                     units=args.get("units"))
         return record.scaled_to_pga(args["scale_to_pga"]) if args.get("scale_to_pga") is not None else record
     makers = {"half_sine": rocking.half_sine, "full_sine": rocking.full_sine, "half_sines": rocking.half_sines,
               "rectangular": rocking.rectangular, "triangular": rocking.triangular, "ricker": rocking.ricker,
@@ -83,6 +130,24 @@ def transient(ops, dt):
     ops.algorithm("Newton")
     ops.integrator(*integrator())
     ops.analysis("Transient")
+
+
+def why_it_does_not_stand(model, coupling, status):
+    """The error when the static gravity step failed (a RuntimeError, "the static gravity step
+    failed", said no more): the column does not stand as tilted, past static tipping at an open
+    interface or with a closed interface that must open at once (the library's reaction test on
+    OpenSees's own matrices), named under ``initial_angles``; the rigid driver runs such a start
+    (``rocking.simulate``)."""
+    tipped = [k for k in range(model.n) if model.overturned(k, status[k])]
+    if tipped:
+        why = f"the column is past static tipping at interface {tipped[0]}"
+    else:
+        mass, load, _ = coupling.reduced(0.0)
+        holds, _, must_open = rocking.check_configuration(mass, load, status)
+        why = (f"the closed interface(s) {[int(k) for k in must_open]} must open at once" if not holds else
+               "OpenSees found no static equilibrium")
+    return rocking._error(f"initial_angles: {why} as tilted, and the analysis starts from the column standing "
+                          f"under gravity (its static step failed); rocking.simulate runs such a start")
 
 
 def settle_gravity(model, tilted):
@@ -125,13 +190,17 @@ def run(scene, dt=None, duration=None, max_events=None, k_contact=None, block_st
 
     ``scene``: a dict with the CLI's scene schema (``blocks``, ``initial_angles``,
     ``excitation``, ``impacts``, ``duration``, ``dt``, ``solver``, ``title``) or the path of a
-    scene file. ``dt``: OpenSees's time step (default ``min(scene dt, 1e-4)``: the contact springs
-    need it); ``duration``, ``max_events``: stop earlier than the scene. ``k_contact``,
+    scene file, checked by the library's parser first (:class:`rocking.RockingError` naming the
+    field); a closed chain, the contact scheme or another gravity are refused. ``dt``:
+    OpenSees's time step (default ``min(scene dt, 1e-4)``: the contact springs need it);
+    ``duration``, ``max_events``: stop earlier than the scene. ``k_contact``,
     ``block_stiffness``: see :meth:`ColumnModel.build`. An impact after which the kinetic energy
     is below ``settle`` times the largest seen so far, or that comes within three steps of the
     previous impact at the same interface, closes the column for good there (a ``settled``
     event): the rigid driver's rule (docs/opensees.md §2), which keeps micro-impacts from
-    crawling.
+    crawling. An interface whose corner went through the contact and back within a step (its
+    rate already away from closure) closes at rest: a ``settled`` event with the impact model's
+    report at zero rate.
 
     Ground motions (``UniformExcitation``): the blocks' beam section is fixed (A = 0.01 m²,
     I = 1e-3 m⁴), so heavy, tall blocks are flexible at the default ``block_stiffness``: on the
@@ -153,6 +222,12 @@ def run(scene, dt=None, duration=None, max_events=None, k_contact=None, block_st
     pivot, SPEC §5), as the rigid driver does.
     """
     spec, base = load_scene(scene)
+    check_scene(spec, base)
+    _check_run_options(dt=dt, duration=duration, max_events=max_events, k_contact=k_contact,
+                       block_stiffness=block_stiffness, settle=settle)
+    if solver not in (None, "auto", "enumerate", "projection"):
+        # It reached the impact model at the first event, after the model was built and run.
+        raise rocking._error(f"solver = {solver!r}, expected \"auto\", \"enumerate\" or \"projection\"")
     blocks = spec["blocks"]
     width = [b["width"] for b in blocks]
     height = [b["height"] for b in blocks]
@@ -164,7 +239,7 @@ def run(scene, dt=None, duration=None, max_events=None, k_contact=None, block_st
     if len(angles) != n:
         raise rocking._error(f"initial_angles: {len(angles)} values for {n} blocks")
     excitation = excitation_of(spec.get("excitation", {"type": "none"}), base)
-    dt = dt or min(spec["dt"], 1e-4)
+    dt = min(spec["dt"], 1e-4) if dt is None else dt
     duration = spec["duration"] if duration is None else duration
     max_events = 10**9 if max_events is None else max_events
     model = ColumnModel.build(width, height, mass, contact, inertia, k_contact, block_stiffness)
@@ -176,7 +251,10 @@ def run(scene, dt=None, duration=None, max_events=None, k_contact=None, block_st
             model.tilt(k, a)
             status[k] = -1 if a < 0 else 1
     model.retie(status)
-    settle_gravity(model, [k for k, a in enumerate(angles) if a])
+    try:
+        settle_gravity(model, [k for k, a in enumerate(angles) if a])
+    except RuntimeError:
+        raise why_it_does_not_stand(model, coupling, status) from None
     if excitation is not None:
         ground_motion(ops, excitation, dt)
     transient(ops, dt)
@@ -195,6 +273,17 @@ def run(scene, dt=None, duration=None, max_events=None, k_contact=None, block_st
     def impact(k):
         nonlocal status, largest_kinetic
         before = list(status)
+        # The rate on the interface's open DOF: towards closure when it is of the other sign.
+        rate = coupling.interface_velocity(status)[dof(k, status, n)]
+        if rate * status[k] >= 0.0:
+            # Through the contact and back within the step (the springs turned it, a small
+            # rocking late in a run): it closes at rest, the library deciding what else moves
+            # (the model refuses a rate away from closure).
+            status, v0, v1, report = coupling.impact(status, k, ag(t), at_rest=True)
+            counts["settled"] += 1
+            events.append(event_dict("settled", t, k, before, status, report, rate_before=v0, rate_after=v1))
+            model.retie(status)
+            return
         status, v0, v1, report = coupling.impact(status, k, ag(t))
         counts["impact"] += 1
         events.append(event_dict("impact", t, k, before, status, report, rate_before=v0, rate_after=v1))

@@ -94,13 +94,17 @@ class Coupling:
                 v[d] = rates[k]
         return v
 
-    def impact(self, status, k, ground_acceleration=0.0):
+    def impact(self, status, k, ground_acceleration=0.0, at_rest=False):
         """:func:`rocking.impact_model` on OpenSees's state when interface ``k`` closes; writes
-        the velocities back. Returns ``(status after, rate before, rate after, report)``."""
+        the velocities back. ``at_rest``: the interface arrives with no rate (its corner went
+        through the contact within a step and the springs already turned it back: the model
+        takes its rate as zero). Returns ``(status after, rate before, rate after, report)``."""
         n = self.model.n
         Mr, _, B = self.reduced(ground_acceleration)
         v = self.interface_velocity(status)
         before = v[dof(k, status, n)]
+        if at_rest:
+            v[dof(k, status, n)] = 0.0
         st, vv, report = rocking.impact_model(Mr, status, v, k, n_impacts=self.n_impacts, solver=self.solver)
         status = [int(s) for s in st]
         self.write_back(status, vv, ground_acceleration)

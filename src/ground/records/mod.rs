@@ -112,10 +112,16 @@ fn bad_value(record: &str, line: usize, token: &str) -> RecordError {
     }
 }
 
+/// The file's text, without the UTF-8 byte-order mark that Windows editors and spreadsheets
+/// write first (it was read as part of the first number).
 fn read_text(path: &Path) -> Result<String, RecordError> {
-    std::fs::read_to_string(path).map_err(|e| RecordError::Io {
+    let text = std::fs::read_to_string(path).map_err(|e| RecordError::Io {
         path: path.to_path_buf(),
         message: e.to_string(),
+    })?;
+    Ok(match text.strip_prefix('\u{feff}') {
+        Some(rest) => rest.to_string(),
+        None => text,
     })
 }
 

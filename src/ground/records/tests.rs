@@ -300,6 +300,24 @@ fn read_record_by_extension() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// A file saved with a UTF-8 byte-order mark (Windows editors, spreadsheets) read as one without:
+/// the mark was part of the first number ("`\u{feff}0` is not a finite number", the mark
+/// invisible in the message).
+#[test]
+fn a_byte_order_mark_is_not_part_of_the_first_value() {
+    let dir = std::env::temp_dir().join(format!("rocking-records-bom-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for (name, text) in [("plain.txt", "0 1\n0.1 2\n"), ("sample.AT2", SAMPLE)] {
+        let (with, without) = (dir.join(format!("bom-{name}")), dir.join(name));
+        std::fs::write(&with, format!("\u{feff}{text}")).unwrap();
+        std::fs::write(&without, text).unwrap();
+        let a = read_record(&with, &PlainFormat::default()).unwrap();
+        let b = read_record(&without, &PlainFormat::default()).unwrap();
+        assert_eq!((a.dt, &a.samples), (b.dt, &b.samples), "{name}");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 #[test]
 fn fortran_format() {
     assert_eq!(fortran_e(-1.607847e-4), "-1.6078470E-04");
