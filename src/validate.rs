@@ -38,6 +38,16 @@ pub fn too_many_steps(duration: f64, dt: f64) -> bool {
     duration / dt > MAX_STEPS
 }
 
+/// The most threads a sweep starts (the CLI's `--threads`, Python's `threads=`): a count far
+/// beyond the machine's cores only costs threads, and a million of them got the process killed
+/// while rayon started them.
+pub const MAX_THREADS: usize = 1024;
+
+/// The most points a grid count of a sweep asks for (levels, sizes, pulse periods, radii; the
+/// thesis's OAS grid is 80 × 120): `levels = 10⁹` allocated an 8 GB grid and the process aborted
+/// under a memory limit.
+pub const MAX_GRID_POINTS: usize = 100_000;
+
 /// `v` finite and `> 0`.
 pub fn positive(field: impl Into<String>, v: f64) -> Result<f64, InvalidValue> {
     if v.is_finite() && v > 0.0 {

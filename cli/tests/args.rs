@@ -63,6 +63,19 @@ fn bad_values_are_refused_naming_the_argument() {
             vec!["simulate", "s.json", "--out", "d", "--plot", "p.jpg"],
             "--plot",
         ),
+        // Counts that would start a million threads or allocate gigabytes of grid: refused
+        // before any work (the process was killed, or aborted under a memory limit).
+        (vec!["oas", "x.AT2", "--threads", "1000000"], "--threads"),
+        (vec!["oas", "x.AT2", "--levels", "1000000000"], "--levels"),
+        (vec!["t1", "x.AT2", "--sizes", "100001"], "--sizes"),
+        (vec!["oc", "--ptp-n", "1000000"], "--ptp-n"),
+        (
+            vec!["arch", "oas", "x.AT2", "--radius-n", "1000000"],
+            "--radius-n",
+        ),
+        (vec!["arch", "oc", "--level-n", "1000000"], "--level-n"),
+        (vec!["bench", "drums", "--threads", "1025"], "--threads"),
+        (vec!["bench", "spectra", "--threads", "0"], "--threads"),
     ] {
         let (code, out, err) = rocking(&args);
         assert_eq!(code, 2, "{args:?}: {err}");

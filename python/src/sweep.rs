@@ -19,14 +19,12 @@ use crate::errors::value_error;
 /// How often the waiting thread checks for signals and reports progress.
 const POLL: Duration = Duration::from_millis(50);
 
-/// The most threads a sweep starts: a count far beyond the machine's cores only costs threads,
-/// and a million of them got the process killed (SIGKILL) while rayon started them.
-pub const MAX_THREADS: usize = 1024;
+/// The most threads a sweep starts (the library's, as the CLI's `--threads`).
+pub use rocking::validate::MAX_THREADS;
 
-/// The most points a grid count (`levels=`, `sizes=`, `ptp=`, `radius_n=`, …) asks for: the
-/// thesis's grid is 80 × 120; `levels=10**9` allocated an 8 GB grid (an abort under a memory
-/// limit, the caller with it).
-pub const MAX_COUNT: usize = 100_000;
+/// The most points a grid count (`levels=`, `sizes=`, `ptp=`, `radius_n=`, …) asks for (the
+/// library's, as the CLI's grid counts).
+pub use rocking::validate::MAX_GRID_POINTS as MAX_COUNT;
 
 /// A grid count `n` (already ≥ 1) within [`MAX_COUNT`], named.
 pub fn check_count(name: &str, n: usize) -> PyResult<usize> {

@@ -68,7 +68,7 @@ pub struct DrumsBenchArgs {
     #[arg(long)]
     pub consistent: bool,
     /// Threads (default: every core).
-    #[arg(long, value_parser = count)]
+    #[arg(long, value_parser = crate::commands::sweep::threads)]
     pub threads: Option<usize>,
     /// Run only the cases `k` with `k % n == i` (`i/n`).
     #[arg(long, default_value = "0/1")]

@@ -30,7 +30,7 @@ pub struct SpectraBenchArgs {
     #[arg(long)]
     pub out: Option<PathBuf>,
     /// Threads (default: every core).
-    #[arg(long, value_parser = crate::commands::sweep::count)]
+    #[arg(long, value_parser = crate::commands::sweep::threads)]
     pub threads: Option<usize>,
     /// Run each record again with the time step rule scaled by this factor (e.g. 0.5): the
     /// cost of a finer default step, and t₁ at both steps (convergence).

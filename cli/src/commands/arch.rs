@@ -14,7 +14,7 @@ use rocking::spectra::{
 
 use super::oas::level_chart;
 use super::oc::Shape;
-use super::sweep::{count, positive};
+use super::sweep::{count, grid_count, positive};
 use crate::output::print_json;
 use crate::plot::{Chart, Scale, Series, Style, COLORS};
 use crate::progress;
@@ -118,7 +118,7 @@ pub struct ArchOasArgs {
     #[arg(long = "radius-min", default_value_t = 1.0, value_parser = positive)]
     pub radius_min: f64,
     /// Number of radii (log-spaced, scanned from the largest).
-    #[arg(long = "radius-n", default_value_t = 12, value_parser = count)]
+    #[arg(long = "radius-n", default_value_t = 12, value_parser = grid_count)]
     pub radius_n: usize,
     /// Lowest level a_p / (λ g).
     #[arg(long = "level-min", default_value_t = 1.5, value_parser = positive)]
@@ -127,7 +127,7 @@ pub struct ArchOasArgs {
     #[arg(long = "level-max", default_value_t = 6.0, value_parser = positive)]
     pub level_max: f64,
     /// Number of levels (linear).
-    #[arg(long = "level-n", default_value_t = 10, value_parser = count)]
+    #[arg(long = "level-n", default_value_t = 10, value_parser = grid_count)]
     pub level_n: usize,
     /// Check the single-block design rule (Eq. 21, i_cr ≈ 1) with this t1 [s] (e.g. the
     /// record's, from `rocking t1`) against the arch OAS, with p of the arch's onset mechanism.
@@ -285,13 +285,13 @@ pub struct ArchOcArgs {
     #[arg(long = "ptp-max", default_value_t = 10.0, value_parser = positive)]
     pub ptp_max: f64,
     /// Number of p t_p values (log-spaced).
-    #[arg(long = "ptp-n", default_value_t = 8, value_parser = count)]
+    #[arg(long = "ptp-n", default_value_t = 8, value_parser = grid_count)]
     pub ptp_n: usize,
     /// Highest level a_p / (λ g).
     #[arg(long = "level-max", default_value_t = 6.0, value_parser = positive)]
     pub level_max: f64,
     /// Number of levels (linear from 1).
-    #[arg(long = "level-n", default_value_t = 11, value_parser = count)]
+    #[arg(long = "level-n", default_value_t = 11, value_parser = grid_count)]
     pub level_n: usize,
     /// Draw the curve (.svg or .png).
     #[arg(long, value_name = "FILE", value_parser = crate::plot::plot_path)]

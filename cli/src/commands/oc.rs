@@ -9,7 +9,7 @@ use rocking::model::single_block::EquivalentBlock;
 use rocking::spectra::report::OcReport;
 use rocking::spectra::{self, column_of_size, linear_levels, log_sizes, PulseShape, SweepOptions};
 
-use super::sweep::{count, positive, Shard, SimulationArgs};
+use super::sweep::{count, grid_count, positive, Shard, SimulationArgs};
 use crate::output::print_json;
 use crate::plot::{Chart, Scale, Series, Style, COLORS};
 use crate::progress;
@@ -60,13 +60,13 @@ pub struct OcArgs {
     #[arg(long = "ptp-max", default_value_t = 10.0, value_parser = positive)]
     pub ptp_max: f64,
     /// Number of p t_p values (log-spaced).
-    #[arg(long = "ptp-n", default_value_t = 40, value_parser = count)]
+    #[arg(long = "ptp-n", default_value_t = 40, value_parser = grid_count)]
     pub ptp_n: usize,
     /// Highest level a_p / a_p,min.
     #[arg(long = "level-max", default_value_t = 10.0, value_parser = positive)]
     pub level_max: f64,
     /// Number of levels (linear from 1).
-    #[arg(long = "level-n", default_value_t = 40, value_parser = count)]
+    #[arg(long = "level-n", default_value_t = 40, value_parser = grid_count)]
     pub level_n: usize,
     #[command(flatten)]
     pub simulation: SimulationArgs,

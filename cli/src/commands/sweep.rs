@@ -57,6 +57,29 @@ pub fn count(s: &str) -> Result<usize, String> {
     }
 }
 
+/// `--threads N`: a count from 1 to [`rocking::validate::MAX_THREADS`] (`--threads 1000000`
+/// had rayon start a million threads, and the process was killed).
+pub fn threads(s: &str) -> Result<usize, String> {
+    let max = rocking::validate::MAX_THREADS;
+    match count(s) {
+        Ok(n) if n <= max => Ok(n),
+        _ => Err(format!("must be a whole number from 1 to {max}, got {s}")),
+    }
+}
+
+/// A grid count (levels, sizes, pulse periods, radii): from 1 to
+/// [`rocking::validate::MAX_GRID_POINTS`] (`--levels 1000000000` allocated an 8 GB grid and the
+/// process aborted under a memory limit).
+pub fn grid_count(s: &str) -> Result<usize, String> {
+    let max = rocking::validate::MAX_GRID_POINTS;
+    match count(s) {
+        Ok(n) if n <= max => Ok(n),
+        _ => Err(format!(
+            "must be a whole number from 1 to {max} (grid points, one simulation or more each), got {s}"
+        )),
+    }
+}
+
 /// `--shard i/n`: keep the items whose index `k` has `k % n == i`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Shard {
@@ -221,7 +244,7 @@ pub struct SimulationArgs {
     #[arg(long = "column-bound", requires = "lagrangian")]
     pub column_bound: bool,
     /// Threads [default: every core]; the results do not depend on it.
-    #[arg(long, value_parser = count)]
+    #[arg(long, value_parser = threads)]
     pub threads: Option<usize>,
 }
 
@@ -256,13 +279,13 @@ pub struct OasGridArgs {
     #[arg(long, default_value_t = 12.0, value_parser = positive)]
     pub slenderness: f64,
     /// Number of levels a_p / a_p,min, linear from 1 to --level-max (thesis: 80).
-    #[arg(long, default_value_t = 80, value_parser = count)]
+    #[arg(long, default_value_t = 80, value_parser = grid_count)]
     pub levels: usize,
     /// Highest level a_p / a_p,min.
     #[arg(long = "level-max", default_value_t = 10.0, value_parser = positive)]
     pub level_max: f64,
     /// Number of sizes R, log-spaced from --size-max down to --size-min (thesis: 120).
-    #[arg(long, default_value_t = 120, value_parser = count)]
+    #[arg(long, default_value_t = 120, value_parser = grid_count)]
     pub sizes: usize,
     /// Smallest size R [m].
     #[arg(long = "size-min", default_value_t = 0.1, value_parser = positive)]
