@@ -275,7 +275,14 @@ proptest! {
         let (e, p) = (&results[0], &results[1]);
         if !e.2.tie {
             prop_assert_eq!(&e.0, &p.0, "configurations differ: {:?} vs {:?}", e.1, p.1);
-            let scale = inf_norm(&e.1).max(inf_norm(&p.1));
+            // Both solvers are accurate to rounding against the accelerations the loads can
+            // produce (|q| over the largest diagonal mass: a lower bound of |M⁻¹q|), not against
+            // an acceleration that cancels down near the onset: a 5-voussoir arch at its
+            // collapse multiplier moves at 2e-6 rad/s², where the two differ by 3e-13
+            // (3e-14 of the loads' scale, 1.5e-7 of the accelerations; the regression seed).
+            let largest_mass = (0..m).map(|d| mass[d * m + d]).fold(0.0, f64::max);
+            let load_scale = inf_norm(&load) / largest_mass;
+            let scale = inf_norm(&e.1).max(inf_norm(&p.1)).max(load_scale);
             for (x, y) in e.1.iter().zip(&p.1) {
                 prop_assert!(close(*x, *y, scale), "accelerations differ: {:?} vs {:?}", e.1, p.1);
             }
