@@ -7,8 +7,9 @@
 #      linked shared and static -- each copied into a scratch directory with no include path
 #      into the source tree -- run, and run again under valgrind;
 #   4. DESTDIR staging; make uninstall removes exactly what install put there;
-#   5. bad input: no cargo, a prefix that cannot be written, a failure half-way: a message,
-#      a non-zero exit and nothing installed.
+#   5. an up-to-date build installs without cargo (`make`, then `sudo make install`); bad input:
+#      no cargo, a prefix that cannot be written, a failure half-way: a message, a non-zero exit
+#      and nothing installed.
 # Needs cc, c++, cmake, pkg-config, valgrind, readelf (.ci/run installs them).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
@@ -113,8 +114,14 @@ check "uninstall removes exactly what was installed" test "$left" = "lib/someone
 
 echo "== bad input"
 bad=$work/bad
-check "no cargo: message, non-zero exit, nothing installed" bash -c \
-    "! make --no-print-directory install CARGO=/nonexistent/cargo PREFIX='$bad/p1' > '$work/b1.log' 2>&1 && grep -q 'cargo not found' '$work/b1.log' && [ ! -e '$bad/p1' ]"
+# `make` then `sudo make install`: root has no cargo on its PATH (sudo's secure_path), and an
+# up-to-date build is installed without running cargo (nor leaving root-owned files in target/).
+check "built: make install without cargo installs the build" bash -c \
+    "make --no-print-directory install CARGO=/nonexistent/cargo PREFIX='$bad/p0' > '$work/b0.log' 2>&1 \
+     && cmp -s include/rocking.h '$bad/p0/include/rocking.h'"
+# -W: as if Cargo.toml had just changed, so that the build is out of date.
+check "out of date, no cargo: message, non-zero exit, nothing installed" bash -c \
+    "! make --no-print-directory -W Cargo.toml install CARGO=/nonexistent/cargo PREFIX='$bad/p1' > '$work/b1.log' 2>&1 && grep -q 'cargo not found' '$work/b1.log' && [ ! -e '$bad/p1' ]"
 mkdir -p "$bad" && echo file > "$bad/a-file"
 check "prefix under a file: message, non-zero exit" bash -c \
     "! make --no-print-directory install PREFIX='$bad/a-file/p' > '$work/b2.log' 2>&1 && grep -q 'rocking install: cannot install into' '$work/b2.log'"
