@@ -488,3 +488,61 @@ fn system_helper_errors() {
     assert!(last_error().contains("beam[1]"));
     assert!(out.iter().all(|&x| x == 3.0));
 }
+
+/// Gravity is the magnitude, positive: the arch and colonnade helpers refuse −9.81 and 0 (an
+/// upside-down or missing load otherwise), naming the argument, and write nothing.
+#[test]
+fn system_helpers_refuse_gravity_that_is_not_positive() {
+    let n = ARCH.voussoirs + 1;
+    let (col, beam) = ([0.6, 3.6, 1500.0], [3.6, 0.5, 2400.0]);
+    for gravity in [-GRAVITY, 0.0] {
+        let mut mass = vec![3.0; 4 * n * n];
+        let mut load = vec![3.0; 2 * n];
+        let code = unsafe {
+            rocking_arch_system(
+                &ARCH,
+                n,
+                std::ptr::null(),
+                std::ptr::null(),
+                0.0,
+                gravity,
+                mass.as_mut_ptr(),
+                load.as_mut_ptr(),
+                std::ptr::null_mut(),
+                std::ptr::null_mut(),
+            )
+        };
+        assert_eq!(
+            code, ROCKING_ERR_INVALID_GEOMETRY,
+            "arch, gravity = {gravity}"
+        );
+        assert!(last_error().contains("gravity"), "{}", last_error());
+        assert!(mass.iter().chain(&load).all(|&x| x == 3.0));
+        let mut out = vec![3.0; 64];
+        let code = unsafe {
+            rocking_colonnade_system(
+                1,
+                col.as_ptr(),
+                1,
+                col.as_ptr(),
+                beam.as_ptr(),
+                3.0,
+                4,
+                std::ptr::null(),
+                std::ptr::null(),
+                0.0,
+                gravity,
+                out.as_mut_ptr(),
+                std::ptr::null_mut(),
+                std::ptr::null_mut(),
+                std::ptr::null_mut(),
+            )
+        };
+        assert_eq!(
+            code, ROCKING_ERR_INVALID_GEOMETRY,
+            "colonnade, gravity = {gravity}"
+        );
+        assert!(last_error().contains("gravity"), "{}", last_error());
+        assert!(out.iter().all(|&x| x == 3.0));
+    }
+}

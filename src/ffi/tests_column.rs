@@ -99,3 +99,33 @@ fn reduce_entry_point_reproduces_appendix_c() {
     assert_eq!(code, ROCKING_ERR_NOT_SYMMETRIC);
     assert_eq!(r3(rm[0]), 43.333);
 }
+
+/// Gravity is the magnitude, positive (the header, docs/c-api.md): an FE code's `g_y = −9.81`
+/// (or a forgotten 0) would turn the load upside down (or off) without a word, so it is refused,
+/// naming the argument, and nothing is written.
+#[test]
+fn column_mass_matrix_refuses_gravity_that_is_not_positive() {
+    let (w, h, m) = ([0.1, 0.1], [0.3, 0.3], [15.0, 15.0]);
+    for gravity in [-9.81, 0.0, -0.0] {
+        let mut out = [7.0; 16];
+        let mut load = [7.0; 4];
+        let code = unsafe {
+            rocking_column_mass_matrix(
+                2,
+                w.as_ptr(),
+                h.as_ptr(),
+                m.as_ptr(),
+                std::ptr::null(),
+                std::ptr::null(),
+                std::ptr::null(),
+                0.0,
+                gravity,
+                out.as_mut_ptr(),
+                load.as_mut_ptr(),
+            )
+        };
+        assert_eq!(code, ROCKING_ERR_INVALID_GEOMETRY, "gravity = {gravity}");
+        assert!(last_error().contains("gravity"), "{}", last_error());
+        assert_eq!((out, load), ([7.0; 16], [7.0; 4]));
+    }
+}

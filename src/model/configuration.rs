@@ -157,6 +157,31 @@ pub fn check_finite(name: &str, values: &[f64]) -> Result<(), RockingError> {
     }
 }
 
+/// Checks the ground acceleration and gravity (m/s²) of a system helper: both finite
+/// (`NotFinite`), and gravity positive, the magnitude of g pointing down (`InvalidGeometry`: an
+/// FE code's `g_y = −9.81`, or a forgotten 0, would turn the load upside down, or off).
+pub fn check_accelerations(ground_acceleration: f64, gravity: f64) -> Result<(), RockingError> {
+    for (name, v) in [
+        ("ground_acceleration", ground_acceleration),
+        ("gravity", gravity),
+    ] {
+        if !v.is_finite() {
+            return Err(RockingError::new(
+                ErrorKind::NotFinite,
+                format!("{name} = {v}"),
+            ));
+        }
+    }
+    crate::validate::positive("gravity", gravity)
+        .map(|_| ())
+        .map_err(|e| {
+            RockingError::new(
+                ErrorKind::InvalidGeometry,
+                format!("{e} (the magnitude of g, pointing down)"),
+            )
+        })
+}
+
 /// Checks that a `m × m` matrix is finite and symmetric: entry by entry,
 /// `|M_rc − M_cr| <= 1e-9 max(|M_rc|, |M_cr|) + 1e-14 √(|M_rr M_cc|)` — relative to the entry,
 /// with a floor at the natural size of an off-diagonal entry of a positive definite matrix, so

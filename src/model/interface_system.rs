@@ -36,9 +36,9 @@ pub struct InterfaceSystem {
 /// the right) and gravity `gravity` (m/s², positive).
 ///
 /// Checks, in this order: array lengths (`InvalidSize`), `phi` finite (`NotFinite`),
-/// `ground_acceleration` and `gravity` finite (`NotFinite`), at most one non-zero DOF per
-/// interface with the admissible sign (`InvalidAngles`), the blocks (`InvalidGeometry`), and a
-/// finite result (`Overflow`).
+/// `ground_acceleration` and `gravity` finite (`NotFinite`), `gravity` positive
+/// (`InvalidGeometry`), at most one non-zero DOF per interface with the admissible sign
+/// (`InvalidAngles`), the blocks (`InvalidGeometry`), and a finite result (`Overflow`).
 pub fn column_system(
     blocks: &BlockArrays<'_>,
     phi: Option<&[f64]>,
@@ -64,17 +64,7 @@ pub fn column_system(
     let straight = vec![0.0; 2 * n];
     let phi = phi.unwrap_or(&straight);
     configuration::check_finite("phi", phi)?;
-    for (name, v) in [
-        ("ground_acceleration", ground_acceleration),
-        ("gravity", gravity),
-    ] {
-        if !v.is_finite() {
-            return Err(RockingError::new(
-                ErrorKind::NotFinite,
-                format!("{name} = {v}"),
-            ));
-        }
-    }
+    configuration::check_accelerations(ground_acceleration, gravity)?;
     configuration::statuses_from_angles(phi)?;
     let column = Column::new(
         (0..n)
