@@ -266,7 +266,7 @@ pub unsafe extern "C" fn rocking_reduce(
         // Each input is checked as soon as it is read (as before the FFI was thinned: the code
         // returned for a call with several faults stays the same).
         let mass = input(nodal_mass, n_nodal * n_nodal, "nodal_mass")?;
-        configuration::check_symmetric(&mass, n_nodal)?;
+        configuration::check_symmetric_named("nodal_mass", &mass, n_nodal)?;
         let b = input(transformation, n_nodal * n_reduced, "transformation")?;
         configuration::check_finite("transformation", &b)?;
         let p = if reduced_load.is_requested() {

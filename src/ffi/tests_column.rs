@@ -93,10 +93,25 @@ fn reduce_entry_point_reproduces_appendix_c() {
     let r3 = |x: f64| (x * 1000.0).round() / 1000.0;
     assert_eq!([r3(rm[0]), r3(rm[1]), r3(rm[3])], [43.333, 13.667, 5.667]);
     assert_eq!([r3(rl[0]), r3(rl[1])], [1.810, 2.905]);
-    // Not symmetric: refused, outputs untouched.
+    // Not symmetric: refused, naming the argument (`nodal_mass`, not the models' `mass`),
+    // outputs untouched.
     nodal[1] = 0.5;
     let code = reduce(&nodal, &mut rm, &mut rl);
     assert_eq!(code, ROCKING_ERR_NOT_SYMMETRIC);
+    assert!(
+        last_error().contains("nodal_mass[0][1] = 0.5"),
+        "{}",
+        last_error()
+    );
+    assert_eq!(r3(rm[0]), 43.333);
+    nodal[1] = f64::NAN;
+    let code = reduce(&nodal, &mut rm, &mut rl);
+    assert_eq!(code, ROCKING_ERR_NOT_FINITE);
+    assert!(
+        last_error().contains("nodal_mass[1] = NaN"),
+        "{}",
+        last_error()
+    );
     assert_eq!(r3(rm[0]), 43.333);
 }
 

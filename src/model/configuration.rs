@@ -188,7 +188,13 @@ pub fn check_accelerations(ground_acceleration: f64, gravity: f64) -> Result<(),
 /// that round-off of an FE code's `BᵀMB` passes and a real asymmetry never hides behind a
 /// large entry elsewhere in the matrix.
 pub fn check_symmetric(mass: &[f64], m: usize) -> Result<(), RockingError> {
-    check_finite("mass", mass)?;
+    check_symmetric_named("mass", mass, m)
+}
+
+/// [`check_symmetric`] of the argument `name` (`rocking_reduce`'s `nodal_mass`): the messages
+/// name it.
+pub fn check_symmetric_named(name: &str, mass: &[f64], m: usize) -> Result<(), RockingError> {
+    check_finite(name, mass)?;
     // Equal entries pass (finite: |a − b| = 0 is below the non-negative bound) without the
     // bound's square root: a matrix symmetric to the bit (the chains' are) in one sweep.
     if symmetric_to_the_bit(mass, m) {
@@ -201,7 +207,7 @@ pub fn check_symmetric(mass: &[f64], m: usize) -> Result<(), RockingError> {
             if (a - b).abs() > 1e-9 * a.abs().max(b.abs()) + 1e-14 * floor {
                 return Err(RockingError::new(
                     ErrorKind::NotSymmetric,
-                    format!("mass[{r}][{c}] = {a} but mass[{c}][{r}] = {b}"),
+                    format!("{name}[{r}][{c}] = {a} but {name}[{c}][{r}] = {b}"),
                 ));
             }
         }
