@@ -217,6 +217,7 @@ pub unsafe extern "C" fn rocking_column_mass_matrix(
     load_out: *mut f64,
 ) -> i32 {
     status_call(|| {
+        configuration::check_size_named("n_blocks", n_blocks)?;
         let (m, mm) = sizes(n_blocks)?;
         let mass_out = Output::required(mass_out, mm, "mass_out")?;
         let load_out = Output::optional(load_out, m, "load_out")?;

@@ -144,3 +144,31 @@ fn column_mass_matrix_refuses_gravity_that_is_not_positive() {
         assert_eq!((out, load), ([7.0; 16], [7.0; 4]));
     }
 }
+
+/// A bad `n_blocks` is refused with a message naming `n_blocks`, the argument of this function
+/// (not the models' `n_interfaces`).
+#[test]
+fn column_mass_matrix_names_n_blocks() {
+    let (w, h, m) = ([0.1; 2], [0.3; 2], [15.0; 2]);
+    let mut out = [7.0; 16];
+    for (n, want) in [(0, "n_blocks is 0"), (4097, "n_blocks = 4097 exceeds")] {
+        let code = unsafe {
+            rocking_column_mass_matrix(
+                n,
+                w.as_ptr(),
+                h.as_ptr(),
+                m.as_ptr(),
+                std::ptr::null(),
+                std::ptr::null(),
+                std::ptr::null(),
+                0.0,
+                9.81,
+                out.as_mut_ptr(),
+                std::ptr::null_mut(),
+            )
+        };
+        assert_eq!(code, ROCKING_ERR_INVALID_SIZE);
+        assert!(last_error().contains(want), "{}", last_error());
+        assert_eq!(out, [7.0; 16]);
+    }
+}

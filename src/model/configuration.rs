@@ -116,16 +116,22 @@ pub fn open_dofs(statuses: &[Status]) -> Vec<usize> {
 
 /// Checks the interface count.
 pub fn check_size(n: usize) -> Result<(), RockingError> {
+    check_size_named("n_interfaces", n)
+}
+
+/// [`check_size`] of the argument `name` (`rocking_column_mass_matrix`'s `n_blocks`): the
+/// messages name it.
+pub fn check_size_named(name: &str, n: usize) -> Result<(), RockingError> {
     if n == 0 {
         return Err(RockingError::new(
             ErrorKind::InvalidSize,
-            "n_interfaces is 0",
+            format!("{name} is 0"),
         ));
     }
     if n > MAX_INTERFACES {
         return Err(RockingError::new(
             ErrorKind::InvalidSize,
-            format!("n_interfaces = {n} exceeds the supported maximum {MAX_INTERFACES}"),
+            format!("{name} = {n} exceeds the supported maximum {MAX_INTERFACES}"),
         ));
     }
     Ok(())
