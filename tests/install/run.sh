@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The installed library as its users meet it, from the installed files only (issue 12):
 #   1. make install into a fresh temporary prefix: exactly the documented files, the soname;
-#   2. the header alone compiles as C89, C99, C++98 and C++11 (-pedantic -Werror);
+#   2. the header alone compiles as C89, C99, C11, C++98, C++11 and C++17 (-pedantic -Werror);
 #   3. a C99 client (c_examples/element_skeleton.c) built with pkg-config, linked shared and
 #      static, and a C++ client (tests/install/client.cpp) built with CMake's find_package,
 #      linked shared and static -- each copied into a scratch directory with no include path
@@ -54,10 +54,10 @@ echo "   shared library $(stat -c %s "$prefix/lib/librocking.so.$version") bytes
 echo "== the header alone"
 printf '#include <rocking.h>\nint main(void) { return (int)rocking_abi_version() - ROCKING_ABI_VERSION; }\n' > "$work/h.c"
 cp "$work/h.c" "$work/h.cpp"
-for std in c89 c99; do
+for std in c89 c99 c11; do
     check "header compiles as $std" cc -std=$std -Wall -Wextra -pedantic -Werror -I"$prefix/include" -c "$work/h.c" -o "$work/h.o"
 done
-for std in c++98 c++11; do
+for std in c++98 c++11 c++17; do
     check "header compiles as $std" c++ -std=$std -Wall -Wextra -pedantic -Werror -I"$prefix/include" -c "$work/h.cpp" -o "$work/h.o"
 done
 
@@ -99,6 +99,14 @@ for kind in shared static; do
     check "C++ client, $kind: Eq. 11" bash -c "'$exe' | grep -q ': ok$'"
     check "C++ client, $kind, clean under valgrind" vg "$exe"
 done
+# A merged-/usr system (/lib -> usr/lib): CMake may find the package through the link, from the
+# prefix "/", as <prefix>/lib/cmake/rocking; the targets must still point at /usr. Simulated
+# under $work/merged with the link merged/lib -> usr/lib and CMAKE_PREFIX_PATH=merged.
+make --no-print-directory install PREFIX="$work/merged/usr" > "$work/merged.log" 2>&1
+ln -s usr/lib "$work/merged/lib"
+check "CMake package found through a /lib -> /usr/lib link" bash -c "cmake -S '$work/cxx' -B '$work/cxx/build-merged' \
+    -DCMAKE_PREFIX_PATH='$work/merged' > '$work/cmake-merged.log' 2>&1 && grep -q 'merged/lib/cmake/rocking' '$work/cxx/build-merged/CMakeCache.txt' \
+    && cmake --build '$work/cxx/build-merged' >> '$work/cmake-merged.log' 2>&1 && '$work/cxx/build-merged/client' | grep -q ': ok$'"
 mkdir -p "$work/v"
 printf 'cmake_minimum_required(VERSION 3.13)\nproject(p LANGUAGES C)\nfind_package(rocking 0.2 REQUIRED)\n' > "$work/v/CMakeLists.txt"
 check "find_package(rocking 0.2) refuses $version" bash -c "! cmake -S '$work/v' -B '$work/v/build' -DCMAKE_PREFIX_PATH='$prefix' > '$work/v.log' 2>&1"
