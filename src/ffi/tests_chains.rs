@@ -319,6 +319,16 @@ fn constrained_error_classes() {
     bad_status[4] = 3;
     let (code, _) = run(3, g.as_ptr(), std::ptr::null(), &bad_status, &mass);
     assert_eq!(code, ROCKING_ERR_INVALID_STATUS);
+    // A closure no configuration satisfies (a zero row of G with r = 1): the code's text speaks of
+    // the constraints, not of a closing interface this call does not have.
+    let mut g4 = g.clone();
+    g4.extend(vec![0.0; m]);
+    let rhs = [0.0, 0.0, 0.0, 1.0];
+    let (code, msg) = run(4, g4.as_ptr(), rhs.as_ptr(), &status0, &mass);
+    assert_eq!(code, ROCKING_ERR_INCONSISTENT_STATE);
+    assert!(msg.contains("constraint row 3"), "{msg}");
+    let text = unsafe { CStr::from_ptr(rocking_error_message(code)) }.to_string_lossy();
+    assert!(text.contains("constraints"), "{text}");
 
     // Impact: flags other than 0/1, no flag, a closed joint flagged.
     let mut status = vec![0i8; n];
@@ -410,6 +420,8 @@ fn system_helper_errors() {
         ROCKING_ERR_INVALID_GEOMETRY
     );
     assert!(last_error().contains("arch.thickness"));
+    // The code's text is about geometry in general: an arch has no column.
+    assert!(!last_error().contains("column"), "{}", last_error());
     let mut phi = vec![0.0; m];
     phi[2] = 0.1;
     assert_eq!(
