@@ -175,7 +175,8 @@
 typedef struct RockingOptions {
   /**
    * Consecutive impacts per closing: 1 = Housner, 2 = one bump in the middle (the thesis's
-   * recommended model), … Must be in 1..=10000. Ignored by the opening model.
+   * recommended model), … Must be in 1..=10000, also for the opening models, which do not
+   * use it (a zero-initialised struct is refused: start from `{1, ROCKING_SOLVER_AUTO, 1e-12}`).
    */
   uint32_t n_impacts;
   /**
