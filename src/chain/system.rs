@@ -74,9 +74,11 @@ pub fn loop_system(
             return Err(RockingError::new(
                 ErrorKind::VelocityOnClosedDof,
                 format!(
-                    "joint {k} (status {}): rates phĭ = {r}, phî = {l} (only the open DOF may \
-                     move; a closed joint only on one DOF, the admissible way)",
-                    statuses[k].as_i8()
+                    "joint {k} (status {}): rates[{k}] = {r} (phĭ_{k}), rates[{}] = {l} (phî_{k}) \
+                     (only the open DOF may move; a closed joint only on one DOF, the \
+                     admissible way)",
+                    statuses[k].as_i8(),
+                    n + k
                 ),
             ));
         }

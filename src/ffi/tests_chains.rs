@@ -428,6 +428,27 @@ fn system_helper_errors() {
         call(&ARCH, n, phi.as_ptr(), &mut mass),
         ROCKING_ERR_INVALID_ANGLES
     );
+    assert!(last_error().contains("phi[2] = 0.1"), "{}", last_error());
+    assert!(mass.iter().all(|&x| x == 3.0));
+    // A closed joint turning the inadmissible way: the message names the entry of `rates`.
+    let mut rates = vec![0.0; m];
+    rates[3] = 1.0;
+    let code = unsafe {
+        rocking_arch_system(
+            &ARCH,
+            n,
+            std::ptr::null(),
+            rates.as_ptr(),
+            0.0,
+            GRAVITY,
+            mass.as_mut_ptr(),
+            std::ptr::null_mut(),
+            std::ptr::null_mut(),
+            std::ptr::null_mut(),
+        )
+    };
+    assert_eq!(code, ROCKING_ERR_VELOCITY_ON_CLOSED_DOF);
+    assert!(last_error().contains("rates[3] = 1"), "{}", last_error());
     assert!(mass.iter().all(|&x| x == 3.0));
     let code = unsafe {
         rocking_arch_system(

@@ -46,6 +46,8 @@ fn column_mass_matrix_entry_point_matches_eq10_and_checks_input() {
     let phi = [0.1, 0.0, 0.0, 0.0]; // phĭ must be <= 0
     let code = column_mass_matrix(&w, Some(&phi), &mut out, None);
     assert_eq!(code, ROCKING_ERR_INVALID_ANGLES);
+    // The message names the entries of the argument, as the caller indexes them.
+    assert!(last_error().contains("phi[0] = 0.1"), "{}", last_error());
     assert_eq!(out, before);
 }
 

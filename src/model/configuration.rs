@@ -287,7 +287,11 @@ pub fn statuses_from_angles(phi: &[f64]) -> Result<Vec<Status>, RockingError> {
             (r, l) if r == 0.0 && l > 0.0 => Ok(Status::OpenLeft),
             (r, l) => Err(RockingError::new(
                 ErrorKind::InvalidAngles,
-                format!("interface {k}: phĭ = {r}, phî = {l} (need phĭ <= 0, phî >= 0, at most one non-zero)"),
+                format!(
+                    "interface {k}: phi[{k}] = {r} (phĭ_{k}), phi[{}] = {l} (phî_{k}) (need \
+                     phĭ <= 0, phî >= 0, at most one non-zero)",
+                    n + k
+                ),
             )),
         })
         .collect()
