@@ -88,15 +88,17 @@
 #define ROCKING_ERR_INVALID_OPTIONS (-8)
 
 /**
- * Inconsistent state: the closing interface is moving away from closure.
- * "inconsistent state: the closing interface is not moving towards closure"
+ * Inconsistent state: the closing interface is moving away from closure, or (the
+ * constrained models) the open DOFs cannot satisfy the constraints.
+ * "inconsistent state: the closing interface is moving away from closure, or the open DOFs cannot satisfy the constraints"
  */
 #define ROCKING_ERR_INCONSISTENT_STATE (-9)
 
 /**
- * Invalid column geometry: a size, mass, inertia or contact width that is not finite and
- * positive, or a contact wider than the blocks it joins.
- * "invalid column geometry: sizes, masses and inertias must be finite and positive"
+ * Invalid geometry: a size, mass, inertia, contact width or gravity that is not finite and
+ * positive, or bodies that do not fit together (a contact wider than the blocks it joins,
+ * an arch too thick for its radius, a beam shorter than the span).
+ * "invalid geometry: sizes, masses, inertias and gravity must be finite and positive, and the bodies must fit together"
  */
 #define ROCKING_ERR_INVALID_GEOMETRY (-10)
 
@@ -173,7 +175,8 @@
 typedef struct RockingOptions {
   /**
    * Consecutive impacts per closing: 1 = Housner, 2 = one bump in the middle (the thesis's
-   * recommended model), … Must be in 1..=10000. Ignored by the opening model.
+   * recommended model), … Must be in 1..=10000, also for the opening models, which do not
+   * use it (a zero-initialised struct is refused: start from `{1, ROCKING_SOLVER_AUTO, 1e-12}`).
    */
   uint32_t n_impacts;
   /**

@@ -97,11 +97,13 @@ status_table! {
     /// Invalid options: n_impacts not in 1..=10000, solver not one of `ROCKING_SOLVER_*`, or
     /// tolerance not a finite value in (0, 0.01].
     InvalidOptions = -8, ROCKING_ERR_INVALID_OPTIONS, "invalid options: n_impacts must be >= 1, solver 0..2, tolerance finite in (0, 0.01]";
-    /// Inconsistent state: the closing interface is moving away from closure.
-    InconsistentState = -9, ROCKING_ERR_INCONSISTENT_STATE, "inconsistent state: the closing interface is not moving towards closure";
-    /// Invalid column geometry: a size, mass, inertia or contact width that is not finite and
-    /// positive, or a contact wider than the blocks it joins.
-    InvalidGeometry = -10, ROCKING_ERR_INVALID_GEOMETRY, "invalid column geometry: sizes, masses and inertias must be finite and positive";
+    /// Inconsistent state: the closing interface is moving away from closure, or (the
+    /// constrained models) the open DOFs cannot satisfy the constraints.
+    InconsistentState = -9, ROCKING_ERR_INCONSISTENT_STATE, "inconsistent state: the closing interface is moving away from closure, or the open DOFs cannot satisfy the constraints";
+    /// Invalid geometry: a size, mass, inertia, contact width or gravity that is not finite and
+    /// positive, or bodies that do not fit together (a contact wider than the blocks it joins,
+    /// an arch too thick for its radius, a beam shorter than the span).
+    InvalidGeometry = -10, ROCKING_ERR_INVALID_GEOMETRY, "invalid geometry: sizes, masses, inertias and gravity must be finite and positive, and the bodies must fit together";
     /// A DOF angle has the inadmissible sign, or both DOFs of an interface are non-zero.
     InvalidAngles = -11, ROCKING_ERR_INVALID_ANGLES, "invalid angles: a DOF has the inadmissible sign or both DOFs of an interface are non-zero";
     /// The mass matrix (or a sub-matrix the model needs) is not positive definite.

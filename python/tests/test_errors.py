@@ -139,8 +139,8 @@ def test_opening_model_errors(two_blocks, change, c_name, detail):
     (dict(ground_acceleration=math.inf), "ROCKING_ERR_NOT_FINITE", "ground_acceleration = inf"),
     (dict(width=[[0.1, 0.1]]), "ROCKING_ERR_INVALID_SIZE", "width has shape (1, 2), expected 1-D"),
     # documented positive; -9.81 turned the weight's load upside down, silently
-    (dict(gravity=-9.81), "ROCKING_ERR_INVALID_GEOMETRY", "gravity = -9.81: must be greater than zero"),
-    (dict(gravity=0.0), "ROCKING_ERR_INVALID_GEOMETRY", "gravity = 0: must be greater than zero"),
+    (dict(gravity=-9.81), "ROCKING_ERR_INVALID_GEOMETRY", "gravity = -9.81: must be a finite number greater than zero"),
+    (dict(gravity=0.0), "ROCKING_ERR_INVALID_GEOMETRY", "gravity = 0.0: must be a finite number greater than zero"),
 ])
 def test_column_mass_matrix_errors(change, c_name, detail):
     args = dict(width=[0.1, 0.1], height=[0.3, 0.3], mass=[15.0, 15.0])

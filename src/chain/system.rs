@@ -33,10 +33,10 @@ fn geometry(e: crate::validate::InvalidValue) -> RockingError {
 /// (m/s², +x) and gravity `gravity` (m/s², positive).
 ///
 /// Checks, in this order: lengths (`InvalidSize`), `phi`, `rates`, `ground_acceleration` and
-/// `gravity` finite (`NotFinite`), at most one non-zero angle per joint with the admissible sign
-/// (`InvalidAngles`), rates on the open DOF of an open joint only, and on a closed joint at most
-/// one DOF moving the admissible way (a joint opening at this instant) (`VelocityOnClosedDof`),
-/// and a finite result (`Overflow`).
+/// `gravity` finite (`NotFinite`), `gravity` positive (`InvalidGeometry`), at most one non-zero
+/// angle per joint with the admissible sign (`InvalidAngles`), rates on the open DOF of an open
+/// joint only, and on a closed joint at most one DOF moving the admissible way (a joint opening
+/// at this instant) (`VelocityOnClosedDof`), and a finite result (`Overflow`).
 pub fn loop_system(
     chain: &Chain,
     phi: Option<&[f64]>,
@@ -60,17 +60,7 @@ pub fn loop_system(
     let (phi, rates) = (phi.unwrap_or(&zeros), rates.unwrap_or(&zeros));
     configuration::check_finite("phi", phi)?;
     configuration::check_finite("rates", rates)?;
-    for (name, v) in [
-        ("ground_acceleration", ground_acceleration),
-        ("gravity", gravity),
-    ] {
-        if !v.is_finite() {
-            return Err(RockingError::new(
-                ErrorKind::NotFinite,
-                format!("{name} = {v}"),
-            ));
-        }
-    }
+    configuration::check_accelerations(ground_acceleration, gravity)?;
     let statuses = configuration::statuses_from_angles(phi)?;
     let n = statuses.len();
     for k in 0..n {
@@ -84,9 +74,11 @@ pub fn loop_system(
             return Err(RockingError::new(
                 ErrorKind::VelocityOnClosedDof,
                 format!(
-                    "joint {k} (status {}): rates phĭ = {r}, phî = {l} (only the open DOF may \
-                     move; a closed joint only on one DOF, the admissible way)",
-                    statuses[k].as_i8()
+                    "joint {k} (status {}): rates[{k}] = {r} (phĭ_{k}), rates[{}] = {l} (phî_{k}) \
+                     (only the open DOF may move; a closed joint only on one DOF, the \
+                     admissible way)",
+                    statuses[k].as_i8(),
+                    n + k
                 ),
             ));
         }

@@ -217,6 +217,7 @@ pub unsafe extern "C" fn rocking_column_mass_matrix(
     load_out: *mut f64,
 ) -> i32 {
     status_call(|| {
+        configuration::check_size_named("n_blocks", n_blocks)?;
         let (m, mm) = sizes(n_blocks)?;
         let mass_out = Output::required(mass_out, mm, "mass_out")?;
         let load_out = Output::optional(load_out, m, "load_out")?;
@@ -266,7 +267,7 @@ pub unsafe extern "C" fn rocking_reduce(
         // Each input is checked as soon as it is read (as before the FFI was thinned: the code
         // returned for a call with several faults stays the same).
         let mass = input(nodal_mass, n_nodal * n_nodal, "nodal_mass")?;
-        configuration::check_symmetric(&mass, n_nodal)?;
+        configuration::check_symmetric_named("nodal_mass", &mass, n_nodal)?;
         let b = input(transformation, n_nodal * n_reduced, "transformation")?;
         configuration::check_finite("transformation", &b)?;
         let p = if reduced_load.is_requested() {

@@ -96,57 +96,73 @@ fn thesis_impact_through_the_c_abi() {
 #[test]
 fn impact_error_classes() {
     type Mutation = Box<dyn Fn(&mut ImpactCall)>;
-    let cases: Vec<(&str, Mutation, i32)> = vec![
-        ("n = 0", Box::new(|c| c.n = 0), ROCKING_ERR_INVALID_SIZE),
+    // (case, mutation, code, what the message must say: the argument, and the value)
+    let cases: Vec<(&str, Mutation, i32, &str)> = vec![
+        (
+            "n = 0",
+            Box::new(|c| c.n = 0),
+            ROCKING_ERR_INVALID_SIZE,
+            "n_interfaces is 0",
+        ),
         (
             "n overflows",
             Box::new(|c| c.n = usize::MAX / 2 + 7),
             ROCKING_ERR_INVALID_SIZE,
+            "n_interfaces = ",
         ),
         (
             "NaN mass",
             Box::new(|c| c.mass[5] = f64::NAN),
             ROCKING_ERR_NOT_FINITE,
+            "mass[5] = NaN",
         ),
         (
             "inf velocity",
             Box::new(|c| c.velocity[3] = f64::NEG_INFINITY),
             ROCKING_ERR_NOT_FINITE,
+            "velocity[3] = -inf",
         ),
         (
             "non-symmetric",
             Box::new(|c| c.mass[1] += 0.01),
             ROCKING_ERR_NOT_SYMMETRIC,
+            "mass[0][1]",
         ),
         (
             "status 2",
             Box::new(|c| c.status[0] = 2),
             ROCKING_ERR_INVALID_STATUS,
+            "status[0] = 2",
         ),
         (
             "closing out of range",
             Box::new(|c| c.closing = 2),
             ROCKING_ERR_INVALID_CLOSING_INTERFACE,
+            "closing_interface = 2",
         ),
         (
             "closing closed",
             Box::new(|c| c.closing = 0),
             ROCKING_ERR_INVALID_CLOSING_INTERFACE,
+            "closing_interface = 0",
         ),
         (
             "velocity on closed DOF",
             Box::new(|c| c.velocity[0] = 0.1),
             ROCKING_ERR_VELOCITY_ON_CLOSED_DOF,
+            "velocity[0]",
         ),
         (
             "velocity on inactive DOF",
             Box::new(|c| c.velocity[1] = 0.1),
             ROCKING_ERR_VELOCITY_ON_CLOSED_DOF,
+            "velocity[1]",
         ),
         (
             "moving away",
             Box::new(|c| c.velocity[3] = 1.0),
             ROCKING_ERR_INCONSISTENT_STATE,
+            "velocity[3] = 1",
         ),
         (
             "n_impacts 0",
@@ -158,6 +174,7 @@ fn impact_error_classes() {
                 })
             }),
             ROCKING_ERR_INVALID_OPTIONS,
+            "n_impacts = 0",
         ),
         (
             "solver 7",
@@ -169,6 +186,7 @@ fn impact_error_classes() {
                 })
             }),
             ROCKING_ERR_INVALID_OPTIONS,
+            "solver = 7",
         ),
         (
             "tolerance NaN",
@@ -180,6 +198,7 @@ fn impact_error_classes() {
                 })
             }),
             ROCKING_ERR_INVALID_OPTIONS,
+            "tolerance = NaN",
         ),
         (
             "indefinite",
@@ -189,9 +208,10 @@ fn impact_error_classes() {
                 }
             }),
             ROCKING_ERR_NOT_POSITIVE_DEFINITE,
+            "mass matrix",
         ),
     ];
-    for (name, mutate, expected) in cases {
+    for (name, mutate, expected, says) in cases {
         let mut c = ImpactCall::thesis();
         mutate(&mut c);
         if c.n > 2 {
@@ -208,10 +228,12 @@ fn impact_error_classes() {
                 )
             };
             assert_eq!(code, expected, "{name}");
+            assert!(last_error().contains(says), "{name}: {}", last_error());
             continue;
         }
         let (code, _) = c.call();
         assert_eq!(code, expected, "{name}: {}", last_error());
+        assert!(last_error().contains(says), "{name}: {}", last_error());
     }
 }
 

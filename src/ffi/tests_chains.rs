@@ -319,6 +319,16 @@ fn constrained_error_classes() {
     bad_status[4] = 3;
     let (code, _) = run(3, g.as_ptr(), std::ptr::null(), &bad_status, &mass);
     assert_eq!(code, ROCKING_ERR_INVALID_STATUS);
+    // A closure no configuration satisfies (a zero row of G with r = 1): the code's text speaks of
+    // the constraints, not of a closing interface this call does not have.
+    let mut g4 = g.clone();
+    g4.extend(vec![0.0; m]);
+    let rhs = [0.0, 0.0, 0.0, 1.0];
+    let (code, msg) = run(4, g4.as_ptr(), rhs.as_ptr(), &status0, &mass);
+    assert_eq!(code, ROCKING_ERR_INCONSISTENT_STATE);
+    assert!(msg.contains("constraint row 3"), "{msg}");
+    let text = unsafe { CStr::from_ptr(rocking_error_message(code)) }.to_string_lossy();
+    assert!(text.contains("constraints"), "{text}");
 
     // Impact: flags other than 0/1, no flag, a closed joint flagged.
     let mut status = vec![0i8; n];
@@ -410,12 +420,35 @@ fn system_helper_errors() {
         ROCKING_ERR_INVALID_GEOMETRY
     );
     assert!(last_error().contains("arch.thickness"));
+    // The code's text is about geometry in general: an arch has no column.
+    assert!(!last_error().contains("column"), "{}", last_error());
     let mut phi = vec![0.0; m];
     phi[2] = 0.1;
     assert_eq!(
         call(&ARCH, n, phi.as_ptr(), &mut mass),
         ROCKING_ERR_INVALID_ANGLES
     );
+    assert!(last_error().contains("phi[2] = 0.1"), "{}", last_error());
+    assert!(mass.iter().all(|&x| x == 3.0));
+    // A closed joint turning the inadmissible way: the message names the entry of `rates`.
+    let mut rates = vec![0.0; m];
+    rates[3] = 1.0;
+    let code = unsafe {
+        rocking_arch_system(
+            &ARCH,
+            n,
+            std::ptr::null(),
+            rates.as_ptr(),
+            0.0,
+            GRAVITY,
+            mass.as_mut_ptr(),
+            std::ptr::null_mut(),
+            std::ptr::null_mut(),
+            std::ptr::null_mut(),
+        )
+    };
+    assert_eq!(code, ROCKING_ERR_VELOCITY_ON_CLOSED_DOF);
+    assert!(last_error().contains("rates[3] = 1"), "{}", last_error());
     assert!(mass.iter().all(|&x| x == 3.0));
     let code = unsafe {
         rocking_arch_system(
@@ -487,4 +520,62 @@ fn system_helper_errors() {
     );
     assert!(last_error().contains("beam[1]"));
     assert!(out.iter().all(|&x| x == 3.0));
+}
+
+/// Gravity is the magnitude, positive: the arch and colonnade helpers refuse −9.81 and 0 (an
+/// upside-down or missing load otherwise), naming the argument, and write nothing.
+#[test]
+fn system_helpers_refuse_gravity_that_is_not_positive() {
+    let n = ARCH.voussoirs + 1;
+    let (col, beam) = ([0.6, 3.6, 1500.0], [3.6, 0.5, 2400.0]);
+    for gravity in [-GRAVITY, 0.0] {
+        let mut mass = vec![3.0; 4 * n * n];
+        let mut load = vec![3.0; 2 * n];
+        let code = unsafe {
+            rocking_arch_system(
+                &ARCH,
+                n,
+                std::ptr::null(),
+                std::ptr::null(),
+                0.0,
+                gravity,
+                mass.as_mut_ptr(),
+                load.as_mut_ptr(),
+                std::ptr::null_mut(),
+                std::ptr::null_mut(),
+            )
+        };
+        assert_eq!(
+            code, ROCKING_ERR_INVALID_GEOMETRY,
+            "arch, gravity = {gravity}"
+        );
+        assert!(last_error().contains("gravity"), "{}", last_error());
+        assert!(mass.iter().chain(&load).all(|&x| x == 3.0));
+        let mut out = vec![3.0; 64];
+        let code = unsafe {
+            rocking_colonnade_system(
+                1,
+                col.as_ptr(),
+                1,
+                col.as_ptr(),
+                beam.as_ptr(),
+                3.0,
+                4,
+                std::ptr::null(),
+                std::ptr::null(),
+                0.0,
+                gravity,
+                out.as_mut_ptr(),
+                std::ptr::null_mut(),
+                std::ptr::null_mut(),
+                std::ptr::null_mut(),
+            )
+        };
+        assert_eq!(
+            code, ROCKING_ERR_INVALID_GEOMETRY,
+            "colonnade, gravity = {gravity}"
+        );
+        assert!(last_error().contains("gravity"), "{}", last_error());
+        assert!(out.iter().all(|&x| x == 3.0));
+    }
 }

@@ -46,6 +46,8 @@ fn column_mass_matrix_entry_point_matches_eq10_and_checks_input() {
     let phi = [0.1, 0.0, 0.0, 0.0]; // phĭ must be <= 0
     let code = column_mass_matrix(&w, Some(&phi), &mut out, None);
     assert_eq!(code, ROCKING_ERR_INVALID_ANGLES);
+    // The message names the entries of the argument, as the caller indexes them.
+    assert!(last_error().contains("phi[0] = 0.1"), "{}", last_error());
     assert_eq!(out, before);
 }
 
@@ -93,9 +95,82 @@ fn reduce_entry_point_reproduces_appendix_c() {
     let r3 = |x: f64| (x * 1000.0).round() / 1000.0;
     assert_eq!([r3(rm[0]), r3(rm[1]), r3(rm[3])], [43.333, 13.667, 5.667]);
     assert_eq!([r3(rl[0]), r3(rl[1])], [1.810, 2.905]);
-    // Not symmetric: refused, outputs untouched.
+    // Not symmetric: refused, naming the argument (`nodal_mass`, not the models' `mass`),
+    // outputs untouched.
     nodal[1] = 0.5;
     let code = reduce(&nodal, &mut rm, &mut rl);
     assert_eq!(code, ROCKING_ERR_NOT_SYMMETRIC);
+    assert!(
+        last_error().contains("nodal_mass[0][1] = 0.5"),
+        "{}",
+        last_error()
+    );
     assert_eq!(r3(rm[0]), 43.333);
+    nodal[1] = f64::NAN;
+    let code = reduce(&nodal, &mut rm, &mut rl);
+    assert_eq!(code, ROCKING_ERR_NOT_FINITE);
+    assert!(
+        last_error().contains("nodal_mass[1] = NaN"),
+        "{}",
+        last_error()
+    );
+    assert_eq!(r3(rm[0]), 43.333);
+}
+
+/// Gravity is the magnitude, positive (the header, docs/c-api.md): an FE code's `g_y = −9.81`
+/// (or a forgotten 0) would turn the load upside down (or off) without a word, so it is refused,
+/// naming the argument, and nothing is written.
+#[test]
+fn column_mass_matrix_refuses_gravity_that_is_not_positive() {
+    let (w, h, m) = ([0.1, 0.1], [0.3, 0.3], [15.0, 15.0]);
+    for gravity in [-9.81, 0.0, -0.0] {
+        let mut out = [7.0; 16];
+        let mut load = [7.0; 4];
+        let code = unsafe {
+            rocking_column_mass_matrix(
+                2,
+                w.as_ptr(),
+                h.as_ptr(),
+                m.as_ptr(),
+                std::ptr::null(),
+                std::ptr::null(),
+                std::ptr::null(),
+                0.0,
+                gravity,
+                out.as_mut_ptr(),
+                load.as_mut_ptr(),
+            )
+        };
+        assert_eq!(code, ROCKING_ERR_INVALID_GEOMETRY, "gravity = {gravity}");
+        assert!(last_error().contains("gravity"), "{}", last_error());
+        assert_eq!((out, load), ([7.0; 16], [7.0; 4]));
+    }
+}
+
+/// A bad `n_blocks` is refused with a message naming `n_blocks`, the argument of this function
+/// (not the models' `n_interfaces`).
+#[test]
+fn column_mass_matrix_names_n_blocks() {
+    let (w, h, m) = ([0.1; 2], [0.3; 2], [15.0; 2]);
+    let mut out = [7.0; 16];
+    for (n, want) in [(0, "n_blocks is 0"), (4097, "n_blocks = 4097 exceeds")] {
+        let code = unsafe {
+            rocking_column_mass_matrix(
+                n,
+                w.as_ptr(),
+                h.as_ptr(),
+                m.as_ptr(),
+                std::ptr::null(),
+                std::ptr::null(),
+                std::ptr::null(),
+                0.0,
+                9.81,
+                out.as_mut_ptr(),
+                std::ptr::null_mut(),
+            )
+        };
+        assert_eq!(code, ROCKING_ERR_INVALID_SIZE);
+        assert!(last_error().contains(want), "{}", last_error());
+        assert_eq!(out, [7.0; 16]);
+    }
 }

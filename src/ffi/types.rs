@@ -9,7 +9,8 @@ use crate::model::cone::{ModelOptions, ModelReport, Solver};
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RockingOptions {
     /// Consecutive impacts per closing: 1 = Housner, 2 = one bump in the middle (the thesis's
-    /// recommended model), … Must be in 1..=10000. Ignored by the opening model.
+    /// recommended model), … Must be in 1..=10000, also for the opening models, which do not
+    /// use it (a zero-initialised struct is refused: start from `{1, ROCKING_SOLVER_AUTO, 1e-12}`).
     pub n_impacts: u32,
     /// `ROCKING_SOLVER_AUTO` (enumeration for at most 2 closed interfaces, projection above),
     /// `ROCKING_SOLVER_ENUMERATE` (the thesis's exhaustive search, refused above 12 closed

@@ -116,16 +116,22 @@ pub fn open_dofs(statuses: &[Status]) -> Vec<usize> {
 
 /// Checks the interface count.
 pub fn check_size(n: usize) -> Result<(), RockingError> {
+    check_size_named("n_interfaces", n)
+}
+
+/// [`check_size`] of the argument `name` (`rocking_column_mass_matrix`'s `n_blocks`): the
+/// messages name it.
+pub fn check_size_named(name: &str, n: usize) -> Result<(), RockingError> {
     if n == 0 {
         return Err(RockingError::new(
             ErrorKind::InvalidSize,
-            "n_interfaces is 0",
+            format!("{name} is 0"),
         ));
     }
     if n > MAX_INTERFACES {
         return Err(RockingError::new(
             ErrorKind::InvalidSize,
-            format!("n_interfaces = {n} exceeds the supported maximum {MAX_INTERFACES}"),
+            format!("{name} = {n} exceeds the supported maximum {MAX_INTERFACES}"),
         ));
     }
     Ok(())
@@ -157,13 +163,44 @@ pub fn check_finite(name: &str, values: &[f64]) -> Result<(), RockingError> {
     }
 }
 
+/// Checks the ground acceleration and gravity (m/s²) of a system helper: both finite
+/// (`NotFinite`), and gravity positive, the magnitude of g pointing down (`InvalidGeometry`: an
+/// FE code's `g_y = −9.81`, or a forgotten 0, would turn the load upside down, or off).
+pub fn check_accelerations(ground_acceleration: f64, gravity: f64) -> Result<(), RockingError> {
+    for (name, v) in [
+        ("ground_acceleration", ground_acceleration),
+        ("gravity", gravity),
+    ] {
+        if !v.is_finite() {
+            return Err(RockingError::new(
+                ErrorKind::NotFinite,
+                format!("{name} = {v}"),
+            ));
+        }
+    }
+    crate::validate::positive("gravity", gravity)
+        .map(|_| ())
+        .map_err(|e| {
+            RockingError::new(
+                ErrorKind::InvalidGeometry,
+                format!("{e} (the magnitude of g, pointing down)"),
+            )
+        })
+}
+
 /// Checks that a `m × m` matrix is finite and symmetric: entry by entry,
 /// `|M_rc − M_cr| <= 1e-9 max(|M_rc|, |M_cr|) + 1e-14 √(|M_rr M_cc|)` — relative to the entry,
 /// with a floor at the natural size of an off-diagonal entry of a positive definite matrix, so
 /// that round-off of an FE code's `BᵀMB` passes and a real asymmetry never hides behind a
 /// large entry elsewhere in the matrix.
 pub fn check_symmetric(mass: &[f64], m: usize) -> Result<(), RockingError> {
-    check_finite("mass", mass)?;
+    check_symmetric_named("mass", mass, m)
+}
+
+/// [`check_symmetric`] of the argument `name` (`rocking_reduce`'s `nodal_mass`): the messages
+/// name it.
+pub fn check_symmetric_named(name: &str, mass: &[f64], m: usize) -> Result<(), RockingError> {
+    check_finite(name, mass)?;
     // Equal entries pass (finite: |a − b| = 0 is below the non-negative bound) without the
     // bound's square root: a matrix symmetric to the bit (the chains' are) in one sweep.
     if symmetric_to_the_bit(mass, m) {
@@ -176,7 +213,7 @@ pub fn check_symmetric(mass: &[f64], m: usize) -> Result<(), RockingError> {
             if (a - b).abs() > 1e-9 * a.abs().max(b.abs()) + 1e-14 * floor {
                 return Err(RockingError::new(
                     ErrorKind::NotSymmetric,
-                    format!("mass[{r}][{c}] = {a} but mass[{c}][{r}] = {b}"),
+                    format!("{name}[{r}][{c}] = {a} but {name}[{c}][{r}] = {b}"),
                 ));
             }
         }
@@ -250,7 +287,11 @@ pub fn statuses_from_angles(phi: &[f64]) -> Result<Vec<Status>, RockingError> {
             (r, l) if r == 0.0 && l > 0.0 => Ok(Status::OpenLeft),
             (r, l) => Err(RockingError::new(
                 ErrorKind::InvalidAngles,
-                format!("interface {k}: phĭ = {r}, phî = {l} (need phĭ <= 0, phî >= 0, at most one non-zero)"),
+                format!(
+                    "interface {k}: phi[{k}] = {r} (phĭ_{k}), phi[{}] = {l} (phî_{k}) (need \
+                     phĭ <= 0, phî >= 0, at most one non-zero)",
+                    n + k
+                ),
             )),
         })
         .collect()

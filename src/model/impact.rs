@@ -127,7 +127,10 @@ pub fn impact_model(
     let Some(closing_dof) = corner.dof(closing, n) else {
         return Err(RockingError::new(
             ErrorKind::InvalidClosingInterface,
-            format!("interface {closing} is closed; only an open interface can close"),
+            format!(
+                "closing_interface = {closing} but interface {closing} is closed (status 0); \
+                 only an open interface can close"
+            ),
         ));
     };
     configuration::check_zero_off_configuration(
@@ -140,7 +143,8 @@ pub fn impact_model(
         return Err(RockingError::new(
             ErrorKind::InconsistentState,
             format!(
-                "interface {closing} (status {}) has rate {} on its DOF, moving away from closure",
+                "closing_interface = {closing} (status {}) has velocity[{closing_dof}] = {} on \
+                 its DOF, moving away from closure",
                 corner.as_i8(),
                 velocity[closing_dof]
             ),

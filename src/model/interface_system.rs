@@ -36,9 +36,9 @@ pub struct InterfaceSystem {
 /// the right) and gravity `gravity` (m/s², positive).
 ///
 /// Checks, in this order: array lengths (`InvalidSize`), `phi` finite (`NotFinite`),
-/// `ground_acceleration` and `gravity` finite (`NotFinite`), at most one non-zero DOF per
-/// interface with the admissible sign (`InvalidAngles`), the blocks and a positive `gravity`
-/// (`InvalidGeometry`), and a finite result (`Overflow`).
+/// `ground_acceleration` and `gravity` finite (`NotFinite`), `gravity` positive
+/// (`InvalidGeometry`), at most one non-zero DOF per interface with the admissible sign
+/// (`InvalidAngles`), the blocks (`InvalidGeometry`), and a finite result (`Overflow`).
 pub fn column_system(
     blocks: &BlockArrays<'_>,
     phi: Option<&[f64]>,
@@ -64,17 +64,7 @@ pub fn column_system(
     let straight = vec![0.0; 2 * n];
     let phi = phi.unwrap_or(&straight);
     configuration::check_finite("phi", phi)?;
-    for (name, v) in [
-        ("ground_acceleration", ground_acceleration),
-        ("gravity", gravity),
-    ] {
-        if !v.is_finite() {
-            return Err(RockingError::new(
-                ErrorKind::NotFinite,
-                format!("{name} = {v}"),
-            ));
-        }
-    }
+    configuration::check_accelerations(ground_acceleration, gravity)?;
     configuration::statuses_from_angles(phi)?;
     let column = Column::new(
         (0..n)
@@ -88,13 +78,6 @@ pub fn column_system(
             .collect(),
     )
     .map_err(|e| RockingError::new(ErrorKind::InvalidGeometry, e.to_string()))?;
-    if gravity <= 0.0 {
-        // Documented positive: a negative one turned the weight's load upside down, silently.
-        return Err(RockingError::new(
-            ErrorKind::InvalidGeometry,
-            format!("gravity = {gravity}: must be greater than zero (m/s², acting downwards)"),
-        ));
-    }
     let pose = column.pose(phi);
     let system = InterfaceSystem {
         mass: column.mass_matrix(&pose),
@@ -212,8 +195,9 @@ mod tests {
             let e = column_system(&ok, None, 0.0, g).unwrap_err();
             assert_eq!(e.kind, ErrorKind::InvalidGeometry, "{g}");
             assert!(
-                e.detail
-                    .starts_with(&format!("gravity = {g}: must be greater than zero")),
+                e.detail.starts_with(&format!(
+                    "gravity = {g:?}: must be a finite number greater than zero"
+                )),
                 "{}",
                 e.detail
             );

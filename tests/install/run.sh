@@ -1,14 +1,15 @@
 #!/usr/bin/env bash
 # The installed library as its users meet it, from the installed files only (issue 12):
 #   1. make install into a fresh temporary prefix: exactly the documented files, the soname;
-#   2. the header alone compiles as C89, C99, C++98 and C++11 (-pedantic -Werror);
+#   2. the header alone compiles as C89, C99, C11, C++98, C++11 and C++17 (-pedantic -Werror);
 #   3. a C99 client (c_examples/element_skeleton.c) built with pkg-config, linked shared and
 #      static, and a C++ client (tests/install/client.cpp) built with CMake's find_package,
 #      linked shared and static -- each copied into a scratch directory with no include path
 #      into the source tree -- run, and run again under valgrind;
 #   4. DESTDIR staging; make uninstall removes exactly what install put there;
-#   5. bad input: no cargo, a prefix that cannot be written, a failure half-way: a message,
-#      a non-zero exit and nothing installed.
+#   5. an up-to-date build installs without cargo (`make`, then `sudo make install`); bad input:
+#      no cargo, a prefix that cannot be written, a failure half-way: a message, a non-zero exit
+#      and nothing installed.
 # Needs cc, c++, cmake, pkg-config, valgrind, readelf (.ci/run installs them).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
@@ -53,10 +54,10 @@ echo "   shared library $(stat -c %s "$prefix/lib/librocking.so.$version") bytes
 echo "== the header alone"
 printf '#include <rocking.h>\nint main(void) { return (int)rocking_abi_version() - ROCKING_ABI_VERSION; }\n' > "$work/h.c"
 cp "$work/h.c" "$work/h.cpp"
-for std in c89 c99; do
+for std in c89 c99 c11; do
     check "header compiles as $std" cc -std=$std -Wall -Wextra -pedantic -Werror -I"$prefix/include" -c "$work/h.c" -o "$work/h.o"
 done
-for std in c++98 c++11; do
+for std in c++98 c++11 c++17; do
     check "header compiles as $std" c++ -std=$std -Wall -Wextra -pedantic -Werror -I"$prefix/include" -c "$work/h.cpp" -o "$work/h.o"
 done
 
@@ -98,6 +99,14 @@ for kind in shared static; do
     check "C++ client, $kind: Eq. 11" bash -c "'$exe' | grep -q ': ok$'"
     check "C++ client, $kind, clean under valgrind" vg "$exe"
 done
+# A merged-/usr system (/lib -> usr/lib): CMake may find the package through the link, from the
+# prefix "/", as <prefix>/lib/cmake/rocking; the targets must still point at /usr. Simulated
+# under $work/merged with the link merged/lib -> usr/lib and CMAKE_PREFIX_PATH=merged.
+make --no-print-directory install PREFIX="$work/merged/usr" > "$work/merged.log" 2>&1
+ln -s usr/lib "$work/merged/lib"
+check "CMake package found through a /lib -> /usr/lib link" bash -c "cmake -S '$work/cxx' -B '$work/cxx/build-merged' \
+    -DCMAKE_PREFIX_PATH='$work/merged' > '$work/cmake-merged.log' 2>&1 && grep -q 'merged/lib/cmake/rocking' '$work/cxx/build-merged/CMakeCache.txt' \
+    && cmake --build '$work/cxx/build-merged' >> '$work/cmake-merged.log' 2>&1 && '$work/cxx/build-merged/client' | grep -q ': ok$'"
 mkdir -p "$work/v"
 printf 'cmake_minimum_required(VERSION 3.13)\nproject(p LANGUAGES C)\nfind_package(rocking 0.2 REQUIRED)\n' > "$work/v/CMakeLists.txt"
 check "find_package(rocking 0.2) refuses $version" bash -c "! cmake -S '$work/v' -B '$work/v/build' -DCMAKE_PREFIX_PATH='$prefix' > '$work/v.log' 2>&1"
@@ -113,8 +122,14 @@ check "uninstall removes exactly what was installed" test "$left" = "lib/someone
 
 echo "== bad input"
 bad=$work/bad
-check "no cargo: message, non-zero exit, nothing installed" bash -c \
-    "! make --no-print-directory install CARGO=/nonexistent/cargo PREFIX='$bad/p1' > '$work/b1.log' 2>&1 && grep -q 'cargo not found' '$work/b1.log' && [ ! -e '$bad/p1' ]"
+# `make` then `sudo make install`: root has no cargo on its PATH (sudo's secure_path), and an
+# up-to-date build is installed without running cargo (nor leaving root-owned files in target/).
+check "built: make install without cargo installs the build" bash -c \
+    "make --no-print-directory install CARGO=/nonexistent/cargo PREFIX='$bad/p0' > '$work/b0.log' 2>&1 \
+     && cmp -s include/rocking.h '$bad/p0/include/rocking.h'"
+# -W: as if Cargo.toml had just changed, so that the build is out of date.
+check "out of date, no cargo: message, non-zero exit, nothing installed" bash -c \
+    "! make --no-print-directory -W Cargo.toml install CARGO=/nonexistent/cargo PREFIX='$bad/p1' > '$work/b1.log' 2>&1 && grep -q 'cargo not found' '$work/b1.log' && [ ! -e '$bad/p1' ]"
 mkdir -p "$bad" && echo file > "$bad/a-file"
 check "prefix under a file: message, non-zero exit" bash -c \
     "! make --no-print-directory install PREFIX='$bad/a-file/p' > '$work/b2.log' 2>&1 && grep -q 'rocking install: cannot install into' '$work/b2.log'"
