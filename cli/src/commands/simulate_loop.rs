@@ -4,6 +4,7 @@
 //! Writes `DIR/history.csv` (t; per joint its signed angle `angle_k = phĭ_k + phî_k`),
 //! `DIR/events.jsonl` (`t`, `kind`: opening, closing, locked, settled, collapsed; `joints` that
 //! closed, kinetic energy before and after, `statuses` after) and `DIR/summary.json` (collapsed,
+//! whether it stands under its own weight,
 //! t_end, peak joint angle, events by kind, the joints that ever opened as hinges and about which
 //! face, the closure residual after the projection and the drift of one step before it).
 //! `--plot FILE` draws the chain in its closed geometry with every hinge that opened marked at its
@@ -78,6 +79,14 @@ pub fn run(
         wall,
         out.display()
     );
+    // Said, not left to be guessed from a collapse at the first steps with a peak angle of 0.
+    if outcome.stands_under_own_weight == Some(false) {
+        println!(
+            "{}: does not stand under its own weight (below the minimum thickness for its \
+             embrace angle and voussoirs: docs/arches.md §1); it moves whatever the ground does",
+            scene.title
+        );
+    }
     Ok(())
 }
 

@@ -267,6 +267,7 @@ impl<'a> Runner<'a> {
                 moving_checks: 0,
                 screened: 0,
                 energy: LoopEnergy::default(),
+                stands_under_own_weight: None,
             },
             work: Work::default(),
         }
@@ -361,7 +362,9 @@ impl<'a> Runner<'a> {
                 break;
             }
             if reference && self.resisted.is_none() {
-                self.resisted = Some(self.resisted_interval(&s)?);
+                let resisted = self.resisted_interval(&s)?;
+                self.out.stands_under_own_weight = Some(resisted.0 <= 0.0 && 0.0 <= resisted.1);
+                self.resisted = Some(resisted);
             }
             if reference
                 && self

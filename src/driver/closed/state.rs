@@ -206,6 +206,10 @@ pub struct LoopOutcome {
     pub screened: usize,
     /// The energy balance of the run (its residual is the scheme's error).
     pub energy: super::LoopEnergy,
+    /// Whether the closed loop at rest resists its own weight (`a_g = 0`, the opening model's
+    /// answer), once the run has been closed at rest (`None` if it never was): `false` for an
+    /// arch thinner than its minimum thickness, which collapses whatever the ground does.
+    pub stands_under_own_weight: Option<bool>,
 }
 
 /// Errors of a loop run.
