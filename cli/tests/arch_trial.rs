@@ -71,3 +71,60 @@ fn an_arch_below_its_minimum_thickness_is_said_not_to_stand() {
     assert_eq!(s["collapsed"], false, "{s}");
     assert_eq!(s["stands_under_own_weight"], true, "{s}");
 }
+
+/// An arch of one or two voussoirs has two or three joints: no mechanism can open (a loop needs
+/// four open joints to move, SPEC §9), so it never moves whatever the ground does. `simulate`
+/// took it silently ("end of duration, 0 events" under any pulse) and `arch oc` / `arch oas`
+/// said "arch: does not open under 1000 g"; both now refuse it naming `arch.voussoirs` and why.
+/// Three voussoirs (four joints) run.
+#[test]
+fn an_arch_of_fewer_than_three_voussoirs_is_refused_naming_the_field() {
+    for n in [1, 2] {
+        let scene = format!(
+            r#"{{"arch": {{"radius": 5, "thickness": 0.75, "voussoirs": {n}}},
+                "excitation": {{"type": "half_sine", "amplitude": -30, "duration": 0.5}},
+                "duration": 1.0, "dt": 0.001}}"#
+        );
+        let (run, out) = simulate(&format!("voussoirs_{n}"), &scene, false);
+        assert!(
+            !run.ok && run.stderr.contains("arch.voussoirs") && run.stderr.contains("at least 3"),
+            "{n}: {}",
+            run.stderr
+        );
+        assert!(!out.exists());
+        let n = n.to_string();
+        for args in [
+            vec![
+                "arch",
+                "oc",
+                "--voussoirs",
+                &n,
+                "--ptp-n",
+                "1",
+                "--level-n",
+                "2",
+            ],
+            vec![
+                "arch",
+                "oas",
+                "examples/records/synthetic.AT2",
+                "--voussoirs",
+                &n,
+            ],
+        ] {
+            let run = common::run(&args);
+            assert!(
+                !run.ok
+                    && run.stderr.contains("arch.voussoirs")
+                    && run.stderr.contains("at least 3"),
+                "{args:?}: {}",
+                run.stderr
+            );
+        }
+    }
+    let scene = r#"{"arch": {"radius": 5, "thickness": 0.75, "voussoirs": 3},
+        "excitation": {"type": "half_sine", "amplitude": -5, "duration": 0.5},
+        "duration": 1.0, "dt": 0.001}"#;
+    let (run, _) = simulate("voussoirs_3", scene, false);
+    assert!(run.ok, "{}", run.stderr);
+}

@@ -97,6 +97,22 @@ impl VoussoirArch {
         Ok(())
     }
 
+    /// Checks that the arch can move at all: with fewer than 3 voussoirs (4 joints) no mechanism
+    /// can open (a loop moves only with four or more open joints, SPEC §9), so the arch would
+    /// stay at rest under any ground motion. [`VoussoirArch::validate`] accepts such an arch (its
+    /// system is well defined); a time history or a spectrum of it is refused with this.
+    pub fn can_move(&self) -> Result<(), InvalidValue> {
+        if self.voussoirs < 3 {
+            return Err(InvalidValue::new(
+                "arch.voussoirs",
+                self.voussoirs,
+                "must be at least 3 to move: with fewer than 4 joints no mechanism can open \
+                 (a loop needs four open joints, SPEC §9), so the arch never moves",
+            ));
+        }
+        Ok(())
+    }
+
     /// Half the angle of embrace, `β`.
     pub fn half_embrace(&self) -> f64 {
         0.5 * self.embrace_angle

@@ -127,6 +127,7 @@ pub fn arch_onset(
     model: &ModelOptions,
 ) -> Result<ArchOnset, SpectraError> {
     positive("gravity", gravity)?;
+    shape.arch(1.0).can_move()?;
     onset_of(&shape.chain(1.0)?, gravity, model)
 }
 
