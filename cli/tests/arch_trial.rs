@@ -128,3 +128,44 @@ fn an_arch_of_fewer_than_three_voussoirs_is_refused_naming_the_field() {
     let (run, _) = simulate("voussoirs_3", scene, false);
     assert!(run.ok, "{}", run.stderr);
 }
+
+/// The loop driver asks the opening model at the start of each step while the arch is at rest:
+/// a step longer than the pulse skips it. A half-sine of 5 m/s² (about 3 λ g) lasting 0.5 s
+/// with `dt = 1` s was reported as "end of duration, 0 events" — the arch never saw it — and a
+/// record sampled every 0.01 s run with `dt = 0.02` s skips every other sample. Both are now
+/// refused naming `dt` and the largest step that would do: at least 10 steps over a pulse, at
+/// most the record's own step.
+#[test]
+fn a_step_that_skips_the_ground_motion_is_refused_naming_dt() {
+    let scene = |excitation: &str, dt: f64| {
+        format!(
+            r#"{{"arch": {{"radius": 5, "thickness": 0.75, "voussoirs": 8}},
+                "excitation": {excitation}, "duration": 2.0, "dt": {dt}}}"#
+        )
+    };
+    let pulse = r#"{"type": "half_sine", "amplitude": -5, "duration": 0.5}"#;
+    let record = r#"{"type": "record", "path": "RECORD"}"#.replace(
+        "RECORD",
+        &common::root()
+            .join("examples/records/synthetic.AT2")
+            .display()
+            .to_string(),
+    );
+    for (name, excitation, dt, limit) in [
+        ("pulse", pulse, 1.0, "0.05"),
+        ("pulse_coarse", pulse, 0.06, "0.05"),
+        ("record", record.as_str(), 0.02, "0.01"),
+    ] {
+        let (run, out) = simulate(name, &scene(excitation, dt), false);
+        assert!(
+            !run.ok && run.stderr.contains("rocking: dt: ") && run.stderr.contains(limit),
+            "{name}: {}",
+            run.stderr
+        );
+        assert!(!out.exists());
+    }
+    for (name, excitation, dt) in [("pulse_ok", pulse, 0.05), ("record_ok", &record, 0.01)] {
+        let (run, _) = simulate(name, &scene(excitation, dt), false);
+        assert!(run.ok, "{name}: {}", run.stderr);
+    }
+}
