@@ -191,7 +191,8 @@ pub struct LoopOutcome {
     /// The state at the end (the collapse, or the duration).
     pub state: LoopState,
     pub collapsed: bool,
-    /// Largest `|φ|` of any DOF.
+    /// Largest `|φ|` of any DOF, over the step ends and the events (every state the history
+    /// can hold).
     pub peak_angle: f64,
     /// Largest closure residual of the state after a step (m): `max(|gap|, |rotation| × reach)`
     /// (after the projection when [`LoopOptions::project`]).
