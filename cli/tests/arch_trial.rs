@@ -201,3 +201,64 @@ fn the_peak_angle_is_the_largest_angle_of_the_history() {
     assert!(largest > 0.0);
     assert!(largest <= peak, "history {largest} > summary {peak}");
 }
+
+/// A colonnade of multi-drum columns and a beam of its own length (ancient colonnades are built
+/// of drums; a beam may overhang the columns): `"drums"` cuts each column into that many equal
+/// drums (default 1, Makris & Vassiliou's monolithic frame) and `"beam_length"` sets the beam's
+/// length (default `span + width`, flush with the outer faces). The scene could only describe
+/// monolithic columns with a flush beam. Each drum adds a joint per column; bad values are
+/// refused naming the field.
+#[test]
+fn a_colonnade_of_drums_with_an_overhanging_beam_runs() {
+    let scene = |extra: &str| {
+        format!(
+            r#"{{"colonnade": {{"width": 1, "height": 5, "column_mass": 12500, "span": 4,
+                "beam_height": 1, "beam_mass": 12500{extra}}},
+                "excitation": {{"type": "half_sine", "amplitude": -4, "duration": 0.5}},
+                "duration": 3.0, "dt": 0.001}}"#
+        )
+    };
+    let (run, out) = simulate("frame", &scene(""), false);
+    assert!(run.ok, "{}", run.stderr);
+    let monolithic = summary(&out);
+    assert_eq!(monolithic["statuses_end"].as_array().unwrap().len(), 4);
+    // The defaults spelled out give the same run.
+    let (run, out) = simulate(
+        "frame_defaults",
+        &scene(r#", "drums": 1, "beam_length": 5"#),
+        true,
+    );
+    assert!(run.ok, "{}", run.stderr);
+    let same = summary(&out);
+    for key in ["t_end", "peak_angle", "events", "hinges", "collapsed"] {
+        assert_eq!(same[key], monolithic[key], "{key}");
+    }
+    for drums in [2usize, 3, 5] {
+        let (run, out) = simulate(
+            &format!("drums_{drums}"),
+            &scene(&format!(r#", "drums": {drums}, "beam_length": 6"#)),
+            true,
+        );
+        assert!(run.ok, "{drums}: {}", run.stderr);
+        let s = summary(&out);
+        assert_eq!(
+            s["statuses_end"].as_array().unwrap().len(),
+            2 * drums + 2,
+            "{s}"
+        );
+        assert!(s["events"]["opening"].as_u64().unwrap() >= 1, "{s}");
+        assert!(s["max_closure_residual"].as_f64().unwrap() < 1e-9, "{s}");
+    }
+    for (extra, field) in [
+        (r#", "drums": 0"#, "colonnade.drums"),
+        (r#", "beam_length": 4.5"#, "colonnade.beam_length"),
+        (r#", "beam_length": -1"#, "colonnade.beam_length"),
+    ] {
+        let (run, _) = simulate("bad_frame", &scene(extra), false);
+        assert!(
+            !run.ok && run.stderr.contains(&format!("rocking: {field}")),
+            "{extra}: {}",
+            run.stderr
+        );
+    }
+}

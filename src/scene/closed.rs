@@ -11,7 +11,9 @@
 //! ```
 //! `embrace_angle` is in degrees (180: semicircular). The colonnade is Makris & Vassiliou's
 //! frame: `{"width", "height", "column_mass", "span", "beam_height", "beam_mass"}` (two equal
-//! monolithic columns, a beam `span + width` long flush with their outer faces).
+//! monolithic columns, a beam `span + width` long flush with their outer faces), optionally
+//! `"drums"` (each column cut into that many equal drums) and `"beam_length"` (an overhanging
+//! beam).
 //!
 //! `"min_flight": k` (optional, default 0) sets the driver's [`LoopOptions::min_flight`]: a joint
 //! an impact opens whose predicted flight is shorter than `k` steps stays closed (the treatment
@@ -55,6 +57,14 @@ pub struct ColonnadeSpec {
     pub span: f64,
     pub beam_height: f64,
     pub beam_mass: f64,
+    /// Equal drums each column is cut into (default 1: monolithic), each `height / drums` tall
+    /// with `column_mass / drums`.
+    #[serde(default)]
+    pub drums: Option<usize>,
+    /// Length of the beam (m; default `span + width`, flush with the columns' outer faces); at
+    /// least that, so that it covers both column tops.
+    #[serde(default)]
+    pub beam_length: Option<f64>,
 }
 
 /// The geometry a loop scene was built from (to draw it).
@@ -146,7 +156,7 @@ pub(super) fn build(
             ] {
                 crate::validate::positive(format!("colonnade.{field}"), v).map_err(invalid)?;
             }
-            let frame = CappedColonnade::frame(
+            let mut frame = CappedColonnade::frame(
                 c.width,
                 c.height,
                 c.column_mass,
@@ -154,6 +164,46 @@ pub(super) fn build(
                 c.beam_height,
                 c.beam_mass,
             );
+            // Two columns of `drums` blocks and the beam: `2 drums + 2` joints, at most the
+            // models' maximum of interfaces.
+            let max_drums = (crate::model::configuration::MAX_INTERFACES - 2) / 2;
+            match c.drums {
+                None | Some(1) => {}
+                Some(k) if (2..=max_drums).contains(&k) => {
+                    let drum = crate::model::column::Block::rectangle(
+                        c.width,
+                        c.height / k as f64,
+                        c.column_mass / k as f64,
+                    );
+                    frame.left = vec![drum; k];
+                    frame.right = vec![drum; k];
+                }
+                Some(k) => {
+                    return Err(err(
+                        "colonnade.drums",
+                        format!(
+                            "{k}: must be at least 1 and at most {max_drums} (two columns of \
+                             drums and the beam: 2 drums + 2 joints, at most the models' \
+                             {} interfaces)",
+                            crate::model::configuration::MAX_INTERFACES
+                        ),
+                    ))
+                }
+            }
+            if let Some(length) = c.beam_length {
+                crate::validate::positive("colonnade.beam_length", length).map_err(invalid)?;
+                if length < (c.span + c.width) * (1.0 - 1e-12) {
+                    return Err(err(
+                        "colonnade.beam_length",
+                        format!(
+                            "{length}: the beam must cover both column tops (at least span + \
+                             width = {})",
+                            c.span + c.width
+                        ),
+                    ));
+                }
+                frame.beam.width = length;
+            }
             let chain = frame.chain().map_err(invalid)?;
             (LoopShape::Colonnade(frame), chain)
         }
