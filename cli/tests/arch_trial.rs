@@ -262,3 +262,32 @@ fn a_colonnade_of_drums_with_an_overhanging_beam_runs() {
         );
     }
 }
+
+/// A shallow arch thick enough to hold a thrust line under any load (embrace 60°, t/R = 0.15),
+/// or an embrace given in radians by mistake (3.14°), never opens: `arch oc` said only "arch:
+/// does not open under 1000 g". It now says what that means for the spectrum and names the
+/// embrace angle's unit.
+#[test]
+fn an_arch_that_never_opens_is_explained() {
+    for embrace in ["60", "3.14"] {
+        let run = common::run([
+            "arch",
+            "oc",
+            "--embrace",
+            embrace,
+            "--voussoirs",
+            "8",
+            "--ptp-n",
+            "1",
+            "--level-n",
+            "2",
+        ]);
+        assert!(
+            !run.ok
+                && run.stderr.contains("no collapse multiplier")
+                && run.stderr.contains("degrees"),
+            "{embrace}: {}",
+            run.stderr
+        );
+    }
+}
