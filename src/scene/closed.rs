@@ -139,7 +139,7 @@ pub(super) fn build(
                 depth: a.depth.unwrap_or(1.0),
             };
             let chain = arch.chain().map_err(invalid)?;
-            arch.can_move().map_err(invalid)?;
+            arch.runnable().map_err(invalid)?;
             (LoopShape::Arch(arch), chain)
         }
         (None, Some(c)) => {

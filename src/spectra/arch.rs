@@ -127,7 +127,7 @@ pub fn arch_onset(
     model: &ModelOptions,
 ) -> Result<ArchOnset, SpectraError> {
     positive("gravity", gravity)?;
-    shape.arch(1.0).can_move()?;
+    shape.arch(1.0).runnable()?;
     onset_of(&shape.chain(1.0)?, gravity, model)
 }
 
