@@ -251,6 +251,7 @@ fn a_colonnade_of_drums_with_an_overhanging_beam_runs() {
     }
     for (extra, field) in [
         (r#", "drums": 0"#, "colonnade.drums"),
+        (r#", "drums": 500"#, "colonnade.drums"),
         (r#", "beam_length": 4.5"#, "colonnade.beam_length"),
         (r#", "beam_length": -1"#, "colonnade.beam_length"),
     ] {

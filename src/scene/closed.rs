@@ -164,9 +164,10 @@ pub(super) fn build(
                 c.beam_height,
                 c.beam_mass,
             );
-            // Two columns of `drums` blocks and the beam: `2 drums + 2` joints, at most the
-            // models' maximum of interfaces.
-            let max_drums = (crate::model::configuration::MAX_INTERFACES - 2) / 2;
+            // Two columns of `drums` blocks and the beam: `2 drums + 2` joints, at most as many as
+            // an arch of `MAX_RUN_VOUSSOIRS` has (the at-rest bisection's cost grows as their
+            // cube: `VoussoirArch::runnable`).
+            let max_drums = (crate::chain::arch::MAX_RUN_VOUSSOIRS - 1) / 2;
             match c.drums {
                 None | Some(1) => {}
                 Some(k) if (2..=max_drums).contains(&k) => {
@@ -182,10 +183,10 @@ pub(super) fn build(
                     return Err(err(
                         "colonnade.drums",
                         format!(
-                            "{k}: must be at least 1 and at most {max_drums} (two columns of \
-                             drums and the beam: 2 drums + 2 joints, at most the models' \
-                             {} interfaces)",
-                            crate::model::configuration::MAX_INTERFACES
+                            "{k}: must be at least 1 and at most {max_drums} (2 drums + 2 joints, \
+                             as many as an arch of {} voussoirs: the time to find what the \
+                             closed frame resists grows as the cube of the joints)",
+                            crate::chain::arch::MAX_RUN_VOUSSOIRS
                         ),
                     ))
                 }
