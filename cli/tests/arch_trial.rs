@@ -319,3 +319,30 @@ fn an_arch_of_too_many_voussoirs_is_refused_at_once() {
     );
     assert!(started.elapsed().as_secs() < 10, "{:?}", started.elapsed());
 }
+
+/// Two arch OAS of one record for two different arches (8 and 20 voussoirs, as stored in
+/// docs/data) given to `arch suite` by mistake: it said only "record … is already in the set",
+/// as for a file given twice; it now says the two are for different arches.
+#[test]
+fn a_suite_mixing_two_arches_of_one_record_says_so() {
+    let file = |dir: &str| {
+        common::root()
+            .join("docs/data")
+            .join(dir)
+            .join("oas-RSN1111_KOBE_NIS000.json")
+            .display()
+            .to_string()
+    };
+    let run = common::run(["arch", "suite", &file("arch"), &file("arch20")]);
+    assert!(
+        !run.ok && run.stderr.contains("already in the set") && run.stderr.contains("another arch"),
+        "{}",
+        run.stderr
+    );
+    let run = common::run(["arch", "suite", &file("arch"), &file("arch")]);
+    assert!(
+        !run.ok && run.stderr.contains("already in the set") && !run.stderr.contains("another"),
+        "{}",
+        run.stderr
+    );
+}
