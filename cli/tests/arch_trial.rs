@@ -346,3 +346,30 @@ fn a_suite_mixing_two_arches_of_one_record_says_so() {
         run.stderr
     );
 }
+
+/// An arch of R = 1 µm run with `dt` = 1 ms (a mistake of units): the step is three times the
+/// arch's own time `√(L/g)`, and the run reported a collapse with a peak joint angle of 1.26 rad
+/// and a closure residual of 2 % of the arch's size, silently. A step longer than a tenth of
+/// `√(L/g)` (`L` the chain's span between its farthest joints) is refused naming `dt`; the
+/// bundled arch (R = 5 m) may step up to 0.07 s.
+#[test]
+fn a_step_longer_than_the_chains_own_time_is_refused() {
+    let scene = |radius: f64, dt: f64| {
+        format!(
+            r#"{{"arch": {{"radius": {radius}, "thickness": {}, "voussoirs": 12}},
+                "excitation": {{"type": "none"}}, "duration": 1.0, "dt": {dt}}}"#,
+            0.15 * radius
+        )
+    };
+    let (run, out) = simulate("tiny_arch", &scene(1e-6, 1e-3), false);
+    assert!(
+        !run.ok && run.stderr.contains("rocking: dt: ") && run.stderr.contains("own time"),
+        "{}",
+        run.stderr
+    );
+    assert!(!out.exists());
+    let (run, _) = simulate("tiny_arch_fine", &scene(1e-6, 1e-6), false);
+    assert!(run.ok, "{}", run.stderr);
+    let (run, _) = simulate("arch_coarse", &scene(5.0, 0.07), false);
+    assert!(run.ok, "{}", run.stderr);
+}

@@ -264,6 +264,7 @@ pub(super) fn build(
         ));
     }
     check_step_resolves(&excitation, dt)?;
+    check_step_fits_the_chain(&chain, dt, spec.gravity.unwrap_or(defaults.gravity))?;
     spec.output.check_samples(duration, dt)?;
     let options = LoopOptions {
         gravity: positive("gravity", spec.gravity.unwrap_or(defaults.gravity))?,
@@ -321,6 +322,31 @@ fn check_step_resolves(excitation: &Excitation, dt: f64) -> Result<(), SceneErro
     };
     if dt > limit * (1.0 + 1e-9) {
         return Err(err("dt", format!("{dt}: {what}")));
+    }
+    Ok(())
+}
+
+/// Refuses a step longer than a tenth of the chain's own time `√(L/g)`, `L` the distance between
+/// its farthest joints: an arch of R = 1 µm with `dt` = 1 ms (three of its own times a step)
+/// reported a collapse at 1.26 rad with a closure residual of 2 % of its size. Any real arch or
+/// colonnade (L of metres: 0.05–0.1 s) passes any usual step.
+fn check_step_fits_the_chain(chain: &Chain, dt: f64, gravity: f64) -> Result<(), SceneError> {
+    let joints = chain.joints();
+    let span = joints
+        .iter()
+        .flat_map(|a| joints.iter().map(move |b| (a.centre, b.centre)))
+        .map(|(a, b)| (a[0] - b[0]).hypot(a[1] - b[1]))
+        .fold(0.0, f64::max);
+    let own_time = (span / gravity).sqrt();
+    if gravity > 0.0 && dt > 0.1 * own_time {
+        return Err(err(
+            "dt",
+            format!(
+                "{dt}: more than a tenth of the chain's own time √(L/g) = {own_time:.3e} s (L = \
+                 {span:.3e} m between its farthest joints): at most {:.3e}",
+                0.1 * own_time
+            ),
+        ));
     }
     Ok(())
 }
