@@ -373,3 +373,29 @@ fn a_step_longer_than_the_chains_own_time_is_refused() {
     let (run, _) = simulate("arch_coarse", &scene(5.0, 0.07), false);
     assert!(run.ok, "{}", run.stderr);
 }
+
+/// A column scene's settings copied into an arch scene with their default values ("impacts":
+/// 1, "continue_until_fallen": false, "energy_consistent": false, "exact_velocity_terms": false)
+/// were taken silently, while any other value was refused as "not used by a closed chain": the
+/// field is refused whatever its value, as the page promises.
+#[test]
+fn a_column_setting_at_its_default_value_is_refused_in_an_arch_scene() {
+    for (field, value) in [
+        ("impacts", "1"),
+        ("continue_until_fallen", "false"),
+        ("energy_consistent", "false"),
+        ("exact_velocity_terms", "false"),
+    ] {
+        let scene = format!(
+            r#"{{"arch": {{"radius": 5, "thickness": 0.75, "voussoirs": 8}}, "{field}": {value},
+                "excitation": {{"type": "none"}}, "duration": 0.1, "dt": 0.001}}"#
+        );
+        let (run, out) = simulate(&format!("column_field_{field}"), &scene, false);
+        assert!(
+            !run.ok && run.stderr.contains(&format!("rocking: {field}: ")),
+            "{field}: {}",
+            run.stderr
+        );
+        assert!(!out.exists());
+    }
+}

@@ -91,25 +91,29 @@ pub(super) fn build(
     excitation: Excitation,
     name: &str,
 ) -> Result<LoopScene, SceneError> {
-    // Settings of the column drivers have no meaning here: name them rather than ignore them.
+    // Settings of the column drivers have no meaning here, whatever their value (their
+    // defaults included): name them rather than ignore them.
     let column_only: [(&str, bool); 12] = [
         ("blocks", !spec.blocks.is_empty()),
         ("initial_angles", spec.initial_angles.is_some()),
-        ("impacts", spec.impacts != 1),
+        ("impacts", spec.impacts.is_some()),
         ("integrator", spec.integrator.is_some()),
         ("locator", spec.locator.is_some()),
         ("friction", spec.friction.is_some()),
         ("on_sliding", spec.on_sliding.is_some()),
         ("on_tension", spec.on_tension.is_some()),
         ("scheme", spec.scheme.is_some()),
-        ("continue_until_fallen", spec.continue_until_fallen),
+        (
+            "continue_until_fallen",
+            spec.continue_until_fallen.is_some(),
+        ),
         ("energy_tolerance", spec.energy_tolerance.is_some()),
-        ("energy_consistent", spec.energy_consistent),
+        ("energy_consistent", spec.energy_consistent.is_some()),
     ];
     if let Some((field, _)) = column_only.iter().find(|(_, set)| *set) {
         return Err(err(field, "not used by a closed chain (arch, colonnade)"));
     }
-    if spec.exact_velocity_terms {
+    if spec.exact_velocity_terms.is_some() {
         return Err(err(
             "exact_velocity_terms",
             "a closed chain always uses the exact velocity terms",
