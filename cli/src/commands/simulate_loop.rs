@@ -258,7 +258,7 @@ fn history_chart(scene: &LoopScene, o: &LoopOutcome) -> Result<Chart, String> {
             chart.series.push(Series {
                 name: format!("joint {k}"),
                 points,
-                style: if (i / COLORS.len()) % 2 == 0 {
+                style: if (i / COLORS.len()).is_multiple_of(2) {
                     Style::Line
                 } else {
                     Style::Dashed
