@@ -10,6 +10,9 @@
 use crate::chain::{Body, Chain, Joint};
 use crate::validate::{self, InvalidValue};
 
+/// Most voussoirs of an arch a time history or a spectrum takes ([`VoussoirArch::runnable`]).
+pub const MAX_RUN_VOUSSOIRS: usize = 1000;
+
 /// A voussoir arch on two rigid abutments.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct VoussoirArch {
@@ -94,6 +97,35 @@ impl VoussoirArch {
         }
         validate::positive("arch.density", self.density)?;
         validate::positive("arch.depth", self.depth)?;
+        Ok(())
+    }
+
+    /// Checks that a time history or a spectrum of the arch makes sense and ends: at least 3
+    /// voussoirs (with fewer than 4 joints no mechanism can open, a loop moves only with four or
+    /// more open joints, SPEC §9, so the arch would stay at rest under any ground motion) and at
+    /// most [`MAX_RUN_VOUSSOIRS`]. [`VoussoirArch::validate`] accepts both (the arch's system is
+    /// well defined for the C helper up to 4095 voussoirs).
+    pub fn runnable(&self) -> Result<(), InvalidValue> {
+        if self.voussoirs < 3 {
+            return Err(InvalidValue::new(
+                "arch.voussoirs",
+                self.voussoirs,
+                "must be at least 3 to move: with fewer than 4 joints no mechanism can open \
+                 (a loop needs four open joints, SPEC §9), so the arch never moves",
+            ));
+        }
+        // The text names the limit; keep it in step.
+        const _: () = assert!(MAX_RUN_VOUSSOIRS == 1000);
+        if self.voussoirs > MAX_RUN_VOUSSOIRS {
+            return Err(InvalidValue::new(
+                "arch.voussoirs",
+                self.voussoirs,
+                "must be at most 1000 for a time history or a spectrum: at rest the driver \
+                 bisects what the closed arch resists with the dense opening model, whose cost \
+                 grows as the cube of the joints (500 voussoirs: 6 s, 1000: 45 s, 2000: over \
+                 200 s, 4095: hours and 2 GB)",
+            ));
+        }
         Ok(())
     }
 

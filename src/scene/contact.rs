@@ -97,7 +97,7 @@ pub(super) fn scheme(spec: &SceneSpec) -> Result<SchemeChoice, SceneError> {
                  stepping)",
             ));
         }
-        if spec.energy_consistent {
+        if spec.energy_consistent.unwrap_or(false) {
             return Err(err(
                 "energy_consistent",
                 "applies to schemes \"moreau\" and \"auto\" (the located impacts of the time \
@@ -118,7 +118,10 @@ pub(super) fn scheme(spec: &SceneSpec) -> Result<SchemeChoice, SceneError> {
         ("integrator", spec.integrator.is_some()),
         ("locator", spec.locator.is_some()),
         ("solver", spec.solver.is_some()),
-        ("exact_velocity_terms", spec.exact_velocity_terms),
+        (
+            "exact_velocity_terms",
+            spec.exact_velocity_terms.unwrap_or(false),
+        ),
     ];
     if let Some((field, _)) = driver_only.iter().find(|(_, set)| *set) {
         return Err(err(
@@ -164,13 +167,13 @@ pub(super) fn drum_options(spec: &SceneSpec, column: &Column) -> Result<DrumOpti
             OnTension::Stop
         },
         scheme: SchemeOptions {
-            n_impacts: spec.impacts,
+            n_impacts: spec.impacts.unwrap_or(1),
             gravity: spec.gravity.unwrap_or(GRAVITY),
             energy_tolerance: spec.energy_tolerance,
-            energy_consistent: spec.energy_consistent,
+            energy_consistent: spec.energy_consistent.unwrap_or(false),
             ..SchemeOptions::default()
         },
-        continue_until_fallen: spec.continue_until_fallen,
+        continue_until_fallen: spec.continue_until_fallen.unwrap_or(false),
         record: DrumRecording {
             history_every: spec.output.history.then_some(spec.output.every),
             events: true,

@@ -20,6 +20,10 @@ pub struct LoopSummary<'a> {
     /// The excitation, described in words.
     pub excitation: String,
     pub collapsed: bool,
+    /// Whether the closed chain at rest resists its own weight (`null` if the run never was
+    /// closed at rest): `false` for an arch thinner than its minimum thickness, which collapses
+    /// whatever the ground does ([`LoopOutcome::stands_under_own_weight`]).
+    pub stands_under_own_weight: Option<bool>,
     /// Time at which the run ended (s).
     pub t_end: f64,
     /// Largest `|φ|` of any DOF (rad).
@@ -70,6 +74,7 @@ impl<'a> LoopSummary<'a> {
             title: &scene.title,
             excitation: scene.excitation.describe(),
             collapsed: o.collapsed,
+            stands_under_own_weight: o.stands_under_own_weight,
             t_end: o.state.time,
             peak_angle: o.peak_angle,
             events,

@@ -152,9 +152,10 @@ pub struct SceneSpec {
     #[serde(default)]
     pub initial_angles: Option<Vec<f64>>,
     pub excitation: ExcitationSpec,
-    /// Consecutive impacts per closing (default 1).
-    #[serde(default = "one_u32")]
-    pub impacts: u32,
+    /// Consecutive impacts per closing (default 1). Optional, so that a closed chain's scene can
+    /// refuse it whatever its value.
+    #[serde(default)]
+    pub impacts: Option<u32>,
     pub duration: f64,
     pub dt: f64,
     /// "wilson" (default), "newmark", "rk4", "dop853", or `{"type": "wilson", "theta": 1.4}`.
@@ -192,19 +193,15 @@ pub struct SceneSpec {
     /// Schemes "moreau" and "auto": remove the located impacts' one-signed energy errors at
     /// their source (default false, `crate::contact::consistent`).
     #[serde(default)]
-    pub energy_consistent: bool,
+    pub energy_consistent: Option<bool>,
     /// Exact Lagrangian velocity terms (default false: thesis Eq. 6).
     #[serde(default)]
-    pub exact_velocity_terms: bool,
+    pub exact_velocity_terms: Option<bool>,
     /// Integrate on after static tipping until a block has fallen (default false).
     #[serde(default)]
-    pub continue_until_fallen: bool,
+    pub continue_until_fallen: Option<bool>,
     #[serde(default)]
     pub output: OutputSpec,
-}
-
-fn one_u32() -> u32 {
-    1
 }
 
 /// A scene ready to simulate.
@@ -378,18 +375,18 @@ pub fn build(spec: SceneSpec, base: &Path, name: &str) -> Result<Scene, SceneErr
         },
         stopping: StoppingOptions {
             duration: spec.duration,
-            continue_until_fallen: spec.continue_until_fallen,
+            continue_until_fallen: spec.continue_until_fallen.unwrap_or(false),
             ..defaults.stopping
         },
         physics: PhysicsOptions {
             model: ModelOptions {
-                n_impacts: spec.impacts,
+                n_impacts: spec.impacts.unwrap_or(1),
                 solver,
                 ..ModelOptions::default()
             },
             friction: contact::driver_friction(&spec, defaults.physics.friction),
             gravity: spec.gravity.unwrap_or(defaults.physics.gravity),
-            exact_velocity_terms: spec.exact_velocity_terms,
+            exact_velocity_terms: spec.exact_velocity_terms.unwrap_or(false),
         },
         recording: Recording {
             history_every: spec.output.history.then_some(spec.output.every),

@@ -127,6 +127,7 @@ pub fn arch_onset(
     model: &ModelOptions,
 ) -> Result<ArchOnset, SpectraError> {
     positive("gravity", gravity)?;
+    shape.arch(1.0).runnable()?;
     onset_of(&shape.chain(1.0)?, gravity, model)
 }
 
@@ -155,7 +156,12 @@ pub(super) fn onset_of(
             lo = hi;
             hi *= 2.0;
             if hi > 1e3 {
-                return Err(invalid("arch", "does not open under 1000 g"));
+                return Err(invalid(
+                    "arch",
+                    "does not open under any horizontal ground acceleration up to 1000 g: no \
+                     collapse multiplier λ, no spectrum (a shallow arch thick enough to hold a \
+                     thrust line under any load; the embrace angle is in degrees)",
+                ));
             }
         }
         while hi - lo > 1e-12 * hi {

@@ -85,11 +85,19 @@ fn read_set(files: &[PathBuf], tp: &HashMap<String, f64>) -> Result<Vec<ArchReco
         let oas = report
             .to_oas()
             .map_err(|e| format!("{}: {e}", f.display()))?;
-        if out.iter().any(|r| r.oas.record == oas.record) {
+        if let Some(earlier) = out.iter().find(|r| r.oas.record == oas.record) {
+            // The same record for another arch or grid is a mix of sets, not a file given twice.
+            let pair = [earlier.oas.clone(), oas.clone()];
+            let other = characteristic_arch_oas(&pair, 1.0, "check").is_err();
             return Err(format!(
-                "{}: record `{}` is already in the set",
+                "{}: record `{}` is already in the set{}",
                 f.display(),
-                oas.record
+                oas.record,
+                if other {
+                    ", for another arch or grid: an arch suite needs one grid and one arch"
+                } else {
+                    ""
+                }
             ));
         }
         out.push(ArchRecord {

@@ -4,6 +4,7 @@
 //! Writes `DIR/history.csv` (t; per joint its signed angle `angle_k = phĭ_k + phî_k`),
 //! `DIR/events.jsonl` (`t`, `kind`: opening, closing, locked, settled, collapsed; `joints` that
 //! closed, kinetic energy before and after, `statuses` after) and `DIR/summary.json` (collapsed,
+//! whether it stands under its own weight,
 //! t_end, peak joint angle, events by kind, the joints that ever opened as hinges and about which
 //! face, the closure residual after the projection and the drift of one step before it).
 //! `--plot FILE` draws the chain in its closed geometry with every hinge that opened marked at its
@@ -13,10 +14,12 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+use rocking::chain::colonnade::CappedColonnade;
 use rocking::driver::closed::{LoopEventKind, LoopOutcome, LoopState};
 use rocking::driver::simulate_loop;
+use rocking::model::column::Block;
 use rocking::scene::{
-    hinges, loop_event_name, loop_events, loop_joint_angles, LoopScene, LoopSummary,
+    hinges, loop_event_name, loop_events, loop_joint_angles, LoopScene, LoopShape, LoopSummary,
 };
 
 use crate::output::{json_tree, write_atomic, write_atomic_with};
@@ -77,6 +80,14 @@ pub fn run(
         wall,
         out.display()
     );
+    // Said, not left to be guessed from a collapse at the first steps with a peak angle of 0.
+    if outcome.stands_under_own_weight == Some(false) {
+        println!(
+            "{}: does not stand under its own weight (below the minimum thickness for its \
+             embrace angle and voussoirs: docs/arches.md §1); it moves whatever the ground does",
+            scene.title
+        );
+    }
     Ok(())
 }
 
@@ -123,32 +134,62 @@ fn geometry_chart(scene: &LoopScene, o: &LoopOutcome) -> Chart {
         .iter()
         .map(|j| (j.left_corner()[0], j.left_corner()[1]))
         .collect();
-    chart.series.push(Series {
-        name: "R corners (intrados)".into(),
-        points: right.clone(),
-        style: Style::Line,
-        color: COLORS[0],
-    });
-    chart.series.push(Series {
-        name: "L corners (extrados)".into(),
-        points: left.clone(),
-        style: Style::Line,
-        color: COLORS[0],
-    });
-    // The joint faces as one polyline: R_0 → L_0 → L_1 → R_1 → R_2 → L_2 → … (the steps between
-    // faces run along the edges already drawn).
-    let faces: Vec<(f64, f64)> = right
-        .iter()
-        .zip(&left)
-        .enumerate()
-        .flat_map(|(k, (r, l))| if k % 2 == 0 { [*r, *l] } else { [*l, *r] })
-        .collect();
-    chart.series.push(Series {
-        name: "joints".into(),
-        points: faces,
-        style: Style::Dashed,
-        color: COLORS[7],
-    });
+    match &scene.shape {
+        LoopShape::Arch(_) => {
+            chart.series.push(Series {
+                name: "R corners (intrados)".into(),
+                points: right.clone(),
+                style: Style::Line,
+                color: COLORS[0],
+            });
+            chart.series.push(Series {
+                name: "L corners (extrados)".into(),
+                points: left.clone(),
+                style: Style::Line,
+                color: COLORS[0],
+            });
+        }
+        // The blocks themselves: the corner polylines of a colonnade are the columns' faces
+        // joined at their tops, without the beam.
+        LoopShape::Colonnade(frame) => {
+            for (k, outline) in colonnade_outlines(frame).into_iter().enumerate() {
+                chart.series.push(Series {
+                    name: if k == 0 {
+                        "blocks".into()
+                    } else {
+                        String::new()
+                    },
+                    points: outline,
+                    style: Style::Line,
+                    color: COLORS[0],
+                });
+            }
+        }
+    }
+    // An arch's joint faces as one polyline: R_0 → L_0 → L_1 → R_1 → R_2 → L_2 → … (the steps
+    // between faces run along the edges already drawn). A colonnade's, each on its own (a step
+    // from one column top to the other would run along the beam's underside, which is no joint).
+    let faces: Vec<Vec<(f64, f64)>> = match scene.shape {
+        LoopShape::Arch(_) => vec![right
+            .iter()
+            .zip(&left)
+            .enumerate()
+            .flat_map(|(k, (r, l))| if k % 2 == 0 { [*r, *l] } else { [*l, *r] })
+            .collect()],
+        LoopShape::Colonnade(_) => right.iter().zip(&left).map(|(r, l)| vec![*r, *l]).collect(),
+    };
+    for (k, points) in faces.into_iter().enumerate() {
+        chart.series.push(Series {
+            name: if k == 0 {
+                "joints".into()
+            } else {
+                String::new()
+            },
+            points,
+            style: Style::Dashed,
+            color: COLORS[7],
+        });
+    }
     let hinges = hinges(o);
     for (face, name, color) in [
         (-1i8, "hinge about R", COLORS[1]),
@@ -171,6 +212,27 @@ fn geometry_chart(scene: &LoopScene, o: &LoopOutcome) -> Chart {
     chart
 }
 
+/// The closed outline of every block of `frame` in its closed geometry: the columns' blocks
+/// stacked on their axes (`x = 0` and `x = span`), the beam centred between them on top.
+fn colonnade_outlines(frame: &CappedColonnade) -> Vec<Vec<(f64, f64)>> {
+    let rectangle = |x: f64, y: f64, b: &Block| {
+        let (l, r, t) = (x - 0.5 * b.width, x + 0.5 * b.width, y + b.height);
+        vec![(l, y), (r, y), (r, t), (l, t), (l, y)]
+    };
+    let mut outlines = Vec::new();
+    let mut top = 0.0;
+    for (x, column) in [(0.0, &frame.left), (frame.span, &frame.right)] {
+        let mut y = 0.0;
+        for b in column {
+            outlines.push(rectangle(x, y, b));
+            y += b.height;
+        }
+        top = y;
+    }
+    outlines.push(rectangle(0.5 * frame.span, top, &frame.beam));
+    outlines
+}
+
 /// The joint angles against time (every joint that moved), events marked.
 fn history_chart(scene: &LoopScene, o: &LoopOutcome) -> Result<Chart, String> {
     if o.history.is_empty() {
@@ -190,11 +252,17 @@ fn history_chart(scene: &LoopScene, o: &LoopOutcome) -> Result<Chart, String> {
             .map(|(t, phi)| (*t, phi[k] + phi[n + k]))
             .collect();
         if points.iter().any(|p| p.1 != 0.0) {
+            // The i-th moved joint: the colours in turn, solid and then dashed (16 lines apart).
+            let i = chart.series.len();
             chart.series.push(Series {
                 name: format!("joint {k}"),
                 points,
-                style: Style::Line,
-                color: COLORS[k % COLORS.len()],
+                style: if (i / COLORS.len()).is_multiple_of(2) {
+                    Style::Line
+                } else {
+                    Style::Dashed
+                },
+                color: COLORS[i % COLORS.len()],
             });
         }
     }
@@ -212,4 +280,111 @@ fn history_chart(scene: &LoopScene, o: &LoopOutcome) -> Result<Chart, String> {
         });
     }
     Ok(chart)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The colonnade's picture draws its blocks: both columns and the beam on them. It drew the
+    /// arch's two corner polylines instead ("R corners (intrados)", "L corners (extrados)"),
+    /// which for a colonnade are the inner and outer faces of the columns joined at the top: the
+    /// beam (1 m deep here) was not drawn at all, the chart ended at the column tops.
+    #[test]
+    fn the_colonnade_picture_draws_the_columns_and_the_beam() {
+        let dir = std::env::temp_dir().join(format!("rocking_colonnade_{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("frame.json");
+        std::fs::write(
+            &path,
+            r#"{"colonnade": {"width": 1, "height": 5, "column_mass": 1000, "span": 3,
+                "beam_height": 1, "beam_mass": 1000},
+                "excitation": {"type": "none"}, "duration": 0.01, "dt": 0.001}"#,
+        )
+        .unwrap();
+        let scene = match rocking::scene::load_any(&path).unwrap() {
+            rocking::scene::AnyScene::Loop(s) => s,
+            _ => panic!("not a loop scene"),
+        };
+        let _ = std::fs::remove_dir_all(&dir);
+        let outcome = simulate_loop(
+            &scene.chain,
+            &scene.excitation,
+            LoopState::at_rest(&scene.chain),
+            &scene.options,
+        )
+        .unwrap();
+        let chart = geometry_chart(&scene, &outcome);
+        assert!(
+            chart.series.iter().all(|s| !s.name.contains("intrados")),
+            "{:?}",
+            chart.series.iter().map(|s| &s.name).collect::<Vec<_>>()
+        );
+        let points: Vec<(f64, f64)> = chart
+            .series
+            .iter()
+            .filter(|s| s.style == Style::Line)
+            .flat_map(|s| s.points.iter().copied())
+            .collect();
+        // Every corner of the three blocks: the columns [−0.5, 0.5] and [2.5, 3.5] × [0, 5],
+        // the beam [−0.5, 3.5] × [5, 6].
+        for corner in [
+            (-0.5, 0.0),
+            (0.5, 0.0),
+            (2.5, 0.0),
+            (3.5, 0.0),
+            (-0.5, 6.0),
+            (3.5, 6.0),
+            (-0.5, 5.0),
+            (3.5, 5.0),
+        ] {
+            assert!(
+                points
+                    .iter()
+                    .any(|p| (p.0 - corner.0).abs() < 1e-12 && (p.1 - corner.1).abs() < 1e-12),
+                "{corner:?} not drawn: {points:?}"
+            );
+        }
+    }
+
+    /// The joint angles' chart tells its joints apart: up to 16 joints moved, no two share a
+    /// colour and a line style. Colours were `COLORS[joint % 8]`, all solid: joints 1, 9 and 17
+    /// of the bundled 20-voussoir arch were the same red line (and two moved joints whose numbers
+    /// differ by 8 always looked alike).
+    #[test]
+    fn the_history_chart_tells_the_joints_apart() {
+        let dir = std::env::temp_dir().join(format!("rocking_history_{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("arch.json");
+        std::fs::write(
+            &path,
+            r#"{"arch": {"radius": 5, "thickness": 0.75, "voussoirs": 12},
+                "excitation": {"type": "half_sines", "amplitude": 3, "duration": 0.5, "count": 3},
+                "duration": 3.0, "dt": 0.001}"#,
+        )
+        .unwrap();
+        let scene = match rocking::scene::load_any(&path).unwrap() {
+            rocking::scene::AnyScene::Loop(s) => s,
+            _ => panic!("not a loop scene"),
+        };
+        let _ = std::fs::remove_dir_all(&dir);
+        let outcome = simulate_loop(
+            &scene.chain,
+            &scene.excitation,
+            LoopState::at_rest(&scene.chain),
+            &scene.options,
+        )
+        .unwrap();
+        let chart = history_chart(&scene, &outcome).unwrap();
+        let joints: Vec<_> = chart
+            .series
+            .iter()
+            .filter(|s| s.name.starts_with("joint"))
+            .map(|s| (s.color, s.style == Style::Line))
+            .collect();
+        assert!(joints.len() > COLORS.len(), "{} joints moved", joints.len());
+        for (i, a) in joints.iter().enumerate() {
+            assert!(!joints[..i].contains(a), "series {i} repeats {a:?}");
+        }
+    }
 }

@@ -267,6 +267,7 @@ impl<'a> Runner<'a> {
                 moving_checks: 0,
                 screened: 0,
                 energy: LoopEnergy::default(),
+                stands_under_own_weight: None,
             },
             work: Work::default(),
         }
@@ -314,6 +315,12 @@ impl<'a> Runner<'a> {
         if self.options.record_every > 0 {
             self.out.history.push((s.time, s.phi.clone()));
         }
+        // The state at an event is one of the run's (the history's row above): an impact that
+        // reverses a DOF's rate leaves its largest angle here, between two step ends.
+        self.out.peak_angle = s
+            .phi
+            .iter()
+            .fold(self.out.peak_angle, |p, x| p.max(x.abs()));
     }
 
     fn residual_posed(&self, pose: &ChainPose) -> f64 {
@@ -361,7 +368,9 @@ impl<'a> Runner<'a> {
                 break;
             }
             if reference && self.resisted.is_none() {
-                self.resisted = Some(self.resisted_interval(&s)?);
+                let resisted = self.resisted_interval(&s)?;
+                self.out.stands_under_own_weight = Some(resisted.0 <= 0.0 && 0.0 <= resisted.1);
+                self.resisted = Some(resisted);
             }
             if reference
                 && self
@@ -381,6 +390,7 @@ impl<'a> Runner<'a> {
                     self.out.events.len(),
                     self.out.history.len(),
                     self.out.energy,
+                    self.out.peak_angle,
                 )
             });
             if at_rest && !self.opening(&mut s, ag_now)? {
@@ -441,7 +451,7 @@ impl<'a> Runner<'a> {
                 // would never advance (`LoopError::Stalled` after 100 events): the loop rests
                 // through this step, as its flight, shorter than the step, ends in sustained
                 // contact (the lock's argument). Nothing happened: its events are dropped.
-                if let Some((t0, events0, history0, energy0)) = &rest_start {
+                if let Some((t0, events0, history0, energy0, peak0)) = &rest_start {
                     if s.time == *t0
                         && s.rates.iter().all(|&r| r == 0.0)
                         && s.phi == phi0
@@ -450,6 +460,7 @@ impl<'a> Runner<'a> {
                         self.out.events.truncate(*events0);
                         self.out.history.truncate(*history0);
                         self.out.energy = *energy0;
+                        self.out.peak_angle = *peak0;
                         s.time += dt;
                         continue;
                     }

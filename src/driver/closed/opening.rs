@@ -118,12 +118,14 @@ impl Runner<'_> {
 
     /// The interval of ground accelerations the closed loop at rest `s` resists, by bisection on
     /// each side with the opening model (to 1e-9 relative; its ends are accelerations the model
-    /// answered "at rest" to). `(0, 0)` if it does not resist `a_g = 0`.
+    /// answered "at rest" to). Empty (`(+∞, −∞)`) if it does not resist `a_g = 0`: a loop that
+    /// does not stand under its own weight (an arch thinner than its minimum thickness) must be
+    /// asked at every step, `a_g = 0` included (`(0, 0)` here kept it at rest under no motion).
     pub(super) fn resisted_interval(&mut self, s: &LoopState) -> Result<(f64, f64), LoopError> {
         let gravity = self.options.gravity;
         let mut opens = |ag: f64| self.choice(s, ag);
         if opens(0.0)? {
-            return Ok((0.0, 0.0));
+            return Ok((f64::INFINITY, f64::NEG_INFINITY));
         }
         let mut ends = [0.0; 2];
         for (end, sign) in ends.iter_mut().zip([-1.0, 1.0]) {

@@ -191,7 +191,8 @@ pub struct LoopOutcome {
     /// The state at the end (the collapse, or the duration).
     pub state: LoopState,
     pub collapsed: bool,
-    /// Largest `|φ|` of any DOF.
+    /// Largest `|φ|` of any DOF, over the step ends and the events (every state the history
+    /// can hold).
     pub peak_angle: f64,
     /// Largest closure residual of the state after a step (m): `max(|gap|, |rotation| × reach)`
     /// (after the projection when [`LoopOptions::project`]).
@@ -206,6 +207,10 @@ pub struct LoopOutcome {
     pub screened: usize,
     /// The energy balance of the run (its residual is the scheme's error).
     pub energy: super::LoopEnergy,
+    /// Whether the closed loop at rest resists its own weight (`a_g = 0`, the opening model's
+    /// answer), once the run has been closed at rest (`None` if it never was): `false` for an
+    /// arch thinner than its minimum thickness, which collapses whatever the ground does.
+    pub stands_under_own_weight: Option<bool>,
 }
 
 /// Errors of a loop run.

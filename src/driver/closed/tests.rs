@@ -69,3 +69,34 @@ fn a_step_too_small_for_the_duration_is_refused() {
     };
     assert!(simulate_loop(&chain, &motion, LoopState::at_rest(&chain), &options).is_ok());
 }
+
+/// An arch thinner than its minimum thickness (20 voussoirs: t/R = 0.107460 with hinges at
+/// joints, docs/arches.md §1) does not stand under its own weight: with no ground motion at all it
+/// must open in the self-weight mechanism and collapse, and the outcome must say it does not
+/// stand. It was reported at rest to the end (no event): the at-rest interval of a loop that does
+/// not resist `a_g = 0` was `(0, 0)`, which holds `a_g = 0`, so the opening model was never asked.
+/// The same arch just above the minimum stands and stays closed.
+#[test]
+fn an_arch_below_its_minimum_thickness_collapses_without_ground_motion() {
+    let motion = FnMotion(|_| 0.0, 1.0);
+    let options = LoopOptions {
+        duration: 1.0,
+        ..LoopOptions::default()
+    };
+    let thin = VoussoirArch::semicircular(5.0, 0.5, 20).chain().unwrap();
+    let out = simulate_loop(&thin, &motion, LoopState::at_rest(&thin), &options).unwrap();
+    assert_eq!(out.stands_under_own_weight, Some(false));
+    assert!(out.collapsed, "{:?}", out.events);
+    assert_eq!(out.events[0].kind, LoopEventKind::Opening);
+    // The symmetric five-hinge mechanism of the self-weight limit (0, 10, 20 extrados; 4, 16
+    // intrados).
+    let open: Vec<(usize, i8)> = (out.events[0].statuses.iter().enumerate())
+        .filter(|(_, &s)| s != 0)
+        .map(|(k, &s)| (k, s))
+        .collect();
+    assert_eq!(open, vec![(0, 1), (4, -1), (10, 1), (16, -1), (20, 1)]);
+    let thick = VoussoirArch::semicircular(5.0, 0.55, 20).chain().unwrap();
+    let out = simulate_loop(&thick, &motion, LoopState::at_rest(&thick), &options).unwrap();
+    assert_eq!(out.stands_under_own_weight, Some(true));
+    assert!(out.events.is_empty() && !out.collapsed && out.peak_angle == 0.0);
+}
