@@ -286,22 +286,12 @@ fn history_chart(scene: &LoopScene, o: &LoopOutcome) -> Result<Chart, String> {
 mod tests {
     use super::*;
 
-    /// The colonnade's picture draws its blocks: both columns and the beam on them. It drew the
-    /// arch's two corner polylines instead ("R corners (intrados)", "L corners (extrados)"),
-    /// which for a colonnade are the inner and outer faces of the columns joined at the top: the
-    /// beam (1 m deep here) was not drawn at all, the chart ended at the column tops.
-    #[test]
-    fn the_colonnade_picture_draws_the_columns_and_the_beam() {
-        let dir = std::env::temp_dir().join(format!("rocking_colonnade_{}", std::process::id()));
+    /// The loop scene of the JSON `text` (written to a file of its own, as a user's) and its run.
+    fn run_scene(name: &str, text: &str) -> (LoopScene, LoopOutcome) {
+        let dir = std::env::temp_dir().join(format!("rocking_{name}_{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
-        let path = dir.join("frame.json");
-        std::fs::write(
-            &path,
-            r#"{"colonnade": {"width": 1, "height": 5, "column_mass": 1000, "span": 3,
-                "beam_height": 1, "beam_mass": 1000},
-                "excitation": {"type": "none"}, "duration": 0.01, "dt": 0.001}"#,
-        )
-        .unwrap();
+        let path = dir.join("scene.json");
+        std::fs::write(&path, text).unwrap();
         let scene = match rocking::scene::load_any(&path).unwrap() {
             rocking::scene::AnyScene::Loop(s) => s,
             _ => panic!("not a loop scene"),
@@ -314,6 +304,21 @@ mod tests {
             &scene.options,
         )
         .unwrap();
+        (*scene, outcome)
+    }
+
+    /// The colonnade's picture draws its blocks: both columns and the beam on them. It drew the
+    /// arch's two corner polylines instead ("R corners (intrados)", "L corners (extrados)"),
+    /// which for a colonnade are the inner and outer faces of the columns joined at the top: the
+    /// beam (1 m deep here) was not drawn at all, the chart ended at the column tops.
+    #[test]
+    fn the_colonnade_picture_draws_the_columns_and_the_beam() {
+        let (scene, outcome) = run_scene(
+            "colonnade",
+            r#"{"colonnade": {"width": 1, "height": 5, "column_mass": 1000, "span": 3,
+                "beam_height": 1, "beam_mass": 1000},
+                "excitation": {"type": "none"}, "duration": 0.01, "dt": 0.001}"#,
+        );
         let chart = geometry_chart(&scene, &outcome);
         assert!(
             chart.series.iter().all(|s| !s.name.contains("intrados")),
@@ -353,28 +358,12 @@ mod tests {
     /// differ by 8 always looked alike).
     #[test]
     fn the_history_chart_tells_the_joints_apart() {
-        let dir = std::env::temp_dir().join(format!("rocking_history_{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        let path = dir.join("arch.json");
-        std::fs::write(
-            &path,
+        let (scene, outcome) = run_scene(
+            "history",
             r#"{"arch": {"radius": 5, "thickness": 0.75, "voussoirs": 12},
                 "excitation": {"type": "half_sines", "amplitude": 3, "duration": 0.5, "count": 3},
                 "duration": 3.0, "dt": 0.001}"#,
-        )
-        .unwrap();
-        let scene = match rocking::scene::load_any(&path).unwrap() {
-            rocking::scene::AnyScene::Loop(s) => s,
-            _ => panic!("not a loop scene"),
-        };
-        let _ = std::fs::remove_dir_all(&dir);
-        let outcome = simulate_loop(
-            &scene.chain,
-            &scene.excitation,
-            LoopState::at_rest(&scene.chain),
-            &scene.options,
-        )
-        .unwrap();
+        );
         let chart = history_chart(&scene, &outcome).unwrap();
         let joints: Vec<_> = chart
             .series
