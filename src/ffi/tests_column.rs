@@ -13,11 +13,24 @@ fn column_mass_matrix(
     out: &mut [f64; 16],
     load: Option<&mut [f64; 4]>,
 ) -> i32 {
+    column_mass_matrix_called(2, w, 9.81, phi, out, load)
+}
+
+/// [`column_mass_matrix`] with the block count `n` the caller passes (the arrays still hold
+/// two blocks: a count the function refuses is refused before they are read) and `gravity`.
+fn column_mass_matrix_called(
+    n: usize,
+    w: &[f64; 2],
+    gravity: f64,
+    phi: Option<&[f64; 4]>,
+    out: &mut [f64; 16],
+    load: Option<&mut [f64; 4]>,
+) -> i32 {
     let h = [0.3, 0.3];
     let m = [15.0, 15.0];
     unsafe {
         rocking_column_mass_matrix(
-            2,
+            n,
             w.as_ptr(),
             h.as_ptr(),
             m.as_ptr(),
@@ -25,7 +38,7 @@ fn column_mass_matrix(
             std::ptr::null(),
             phi.map_or(std::ptr::null(), |p| p.as_ptr()),
             0.0,
-            9.81,
+            gravity,
             out.as_mut_ptr(),
             load.map_or(std::ptr::null_mut(), |l| l.as_mut_ptr()),
         )
@@ -122,25 +135,11 @@ fn reduce_entry_point_reproduces_appendix_c() {
 /// naming the argument, and nothing is written.
 #[test]
 fn column_mass_matrix_refuses_gravity_that_is_not_positive() {
-    let (w, h, m) = ([0.1, 0.1], [0.3, 0.3], [15.0, 15.0]);
     for gravity in [-9.81, 0.0, -0.0] {
         let mut out = [7.0; 16];
         let mut load = [7.0; 4];
-        let code = unsafe {
-            rocking_column_mass_matrix(
-                2,
-                w.as_ptr(),
-                h.as_ptr(),
-                m.as_ptr(),
-                std::ptr::null(),
-                std::ptr::null(),
-                std::ptr::null(),
-                0.0,
-                gravity,
-                out.as_mut_ptr(),
-                load.as_mut_ptr(),
-            )
-        };
+        let code =
+            column_mass_matrix_called(2, &[0.1; 2], gravity, None, &mut out, Some(&mut load));
         assert_eq!(code, ROCKING_ERR_INVALID_GEOMETRY, "gravity = {gravity}");
         assert!(last_error().contains("gravity"), "{}", last_error());
         assert_eq!((out, load), ([7.0; 16], [7.0; 4]));
@@ -151,24 +150,9 @@ fn column_mass_matrix_refuses_gravity_that_is_not_positive() {
 /// (not the models' `n_interfaces`).
 #[test]
 fn column_mass_matrix_names_n_blocks() {
-    let (w, h, m) = ([0.1; 2], [0.3; 2], [15.0; 2]);
     let mut out = [7.0; 16];
     for (n, want) in [(0, "n_blocks is 0"), (4097, "n_blocks = 4097 exceeds")] {
-        let code = unsafe {
-            rocking_column_mass_matrix(
-                n,
-                w.as_ptr(),
-                h.as_ptr(),
-                m.as_ptr(),
-                std::ptr::null(),
-                std::ptr::null(),
-                std::ptr::null(),
-                0.0,
-                9.81,
-                out.as_mut_ptr(),
-                std::ptr::null_mut(),
-            )
-        };
+        let code = column_mass_matrix_called(n, &[0.1; 2], 9.81, None, &mut out, None);
         assert_eq!(code, ROCKING_ERR_INVALID_SIZE);
         assert!(last_error().contains(want), "{}", last_error());
         assert_eq!(out, [7.0; 16]);

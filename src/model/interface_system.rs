@@ -111,20 +111,23 @@ mod tests {
     use crate::model::column::GRAVITY;
     use crate::samples;
 
-    fn two_granite() -> (Vec<f64>, Vec<f64>, Vec<f64>) {
-        (vec![0.1; 2], vec![0.3; 2], vec![15.0; 2])
+    /// Two 0.1 × 0.3 m granite blocks of 15 kg (`samples::two_granite_column`), as arrays.
+    fn two_granite() -> BlockArrays<'static> {
+        static WIDTH: [f64; 2] = [0.1; 2];
+        static HEIGHT: [f64; 2] = [0.3; 2];
+        static MASS: [f64; 2] = [15.0; 2];
+        BlockArrays {
+            width: &WIDTH,
+            height: &HEIGHT,
+            mass: &MASS,
+            inertia: None,
+            contact_width: None,
+        }
     }
 
     #[test]
     fn equals_the_column_of_samples() {
-        let (w, h, m) = two_granite();
-        let arrays = BlockArrays {
-            width: &w,
-            height: &h,
-            mass: &m,
-            inertia: None,
-            contact_width: None,
-        };
+        let arrays = two_granite();
         let got = column_system(&arrays, None, 0.0, GRAVITY).unwrap();
         let col = samples::two_granite_column();
         let pose = col.pose(&[0.0; 4]);
@@ -134,14 +137,7 @@ mod tests {
 
     #[test]
     fn names_the_bad_argument() {
-        let (w, h, m) = two_granite();
-        let ok = BlockArrays {
-            width: &w,
-            height: &h,
-            mass: &m,
-            inertia: None,
-            contact_width: None,
-        };
+        let ok = two_granite();
         let kind = |blocks: &BlockArrays, phi: Option<&[f64]>, ag: f64| {
             let e = column_system(blocks, phi, ag, GRAVITY).unwrap_err();
             (e.kind, e.detail)
@@ -183,14 +179,7 @@ mod tests {
     /// turned the load of the weight upside down and 0 dropped it, silently.
     #[test]
     fn gravity_must_be_positive() {
-        let (w, h, m) = two_granite();
-        let ok = BlockArrays {
-            width: &w,
-            height: &h,
-            mass: &m,
-            inertia: None,
-            contact_width: None,
-        };
+        let ok = two_granite();
         for g in [-GRAVITY, 0.0, -0.0] {
             let e = column_system(&ok, None, 0.0, g).unwrap_err();
             assert_eq!(e.kind, ErrorKind::InvalidGeometry, "{g}");
