@@ -436,3 +436,50 @@ fn a_scene_saved_with_a_byte_order_mark_runs() {
     let events = |d: &str| std::fs::read_to_string(dir.join(d).join("events.jsonl")).unwrap();
     assert_eq!(events("a"), events("b"));
 }
+
+/// A step that skips the ground motion is refused for columns and drum columns as for arches:
+/// a 0.5 s half-sine at `dt = 1` left a column at rest ("0 events"), and a step longer than a
+/// record's own skipped its samples. A step of a tenth of the pulse, or the record's own, runs.
+#[test]
+fn a_step_that_skips_the_ground_motion_is_refused_for_columns_and_drums() {
+    let blocks = r#""blocks": [{"width": 1, "height": 2, "mass": 5000}, {"width": 1, "height": 2, "mass": 5000}], "duration": 1"#;
+    let pulse = r#""excitation": {"type": "half_sine", "amplitude": 6, "duration": 0.5}"#;
+    let record = r#""excitation": {"type": "record", "path": "synthetic.AT2"}"#;
+    let drums = r#""friction": 0.5, "on_sliding": "slide", "on_tension": "fly""#;
+    refused(
+        "step_skips",
+        &[
+            (
+                format!(r#"{{{blocks}, {pulse}, "dt": 1}}"#),
+                &["dt: 1", "tenth of the pulse", "at most 0.05"],
+            ),
+            (
+                format!(r#"{{{blocks}, {record}, "dt": 0.02}}"#),
+                &["dt: 0.02", "record's own step", "at most 0.01"],
+            ),
+            (
+                format!(r#"{{{blocks}, {pulse}, {drums}, "dt": 0.06}}"#),
+                &["dt: 0.06", "tenth of the pulse"],
+            ),
+            (
+                format!(r#"{{{blocks}, {record}, {drums}, "dt": 0.011}}"#),
+                &["dt: 0.011", "record's own step"],
+            ),
+        ],
+    );
+    let dir = fresh_dir("step_resolves");
+    std::fs::copy(
+        common::root().join("examples/records/synthetic.AT2"),
+        dir.join("synthetic.AT2"),
+    )
+    .unwrap();
+    for text in [
+        format!(r#"{{{blocks}, {pulse}, "dt": 0.05}}"#),
+        format!(r#"{{{blocks}, {record}, "dt": 0.01}}"#),
+        format!(r#"{{{blocks}, {record}, {drums}, "dt": 0.01}}"#),
+    ] {
+        std::fs::write(dir.join("scene.json"), &text).unwrap();
+        let run = simulate(&dir.join("scene.json"), &dir.join("out"));
+        assert!(run.ok, "{text}: {}", run.stderr);
+    }
+}

@@ -267,7 +267,7 @@ pub(super) fn build(
             format!("{dt}: more than 1e10 steps for the duration"),
         ));
     }
-    check_step_resolves(&excitation, dt)?;
+    super::excitation::check_step_resolves(&excitation, dt)?;
     check_step_fits_the_chain(&chain, dt, spec.gravity.unwrap_or(defaults.gravity))?;
     spec.output.check_samples(duration, dt)?;
     let options = LoopOptions {
@@ -294,40 +294,6 @@ pub(super) fn build(
         options,
         output: spec.output,
     })
-}
-
-/// Steps over a pulse the loop driver needs at least. At rest it asks the opening model at the
-/// start of each step, so a step as long as the pulse can skip it whole (a 0.5 s half-sine with
-/// `dt = 1` left the arch at rest, "0 events"); ten steps over the pulse see it.
-const STEPS_PER_PULSE: f64 = 10.0;
-
-/// Refuses a step that skips the ground motion: longer than a tenth of a pulse, or than a
-/// record's own step (the record's samples between two steps would be skipped).
-fn check_step_resolves(excitation: &Excitation, dt: f64) -> Result<(), SceneError> {
-    let (limit, what) = match excitation {
-        Excitation::None => return Ok(()),
-        Excitation::Pulse(p) => (
-            p.end_time() / STEPS_PER_PULSE,
-            format!(
-                "more than a tenth of the pulse ({} s): at most {}, or the chain at rest can miss \
-                 the pulse",
-                p.end_time(),
-                p.end_time() / STEPS_PER_PULSE
-            ),
-        ),
-        Excitation::Record(r) => (
-            r.dt,
-            format!(
-                "more than the record's own step: at most {}, or the samples between two steps \
-                 are skipped",
-                r.dt
-            ),
-        ),
-    };
-    if dt > limit * (1.0 + 1e-9) {
-        return Err(err("dt", format!("{dt}: {what}")));
-    }
-    Ok(())
 }
 
 /// Refuses a step longer than a tenth of the chain's own time `√(L/g)`, `L` the distance between

@@ -217,3 +217,39 @@ pub(super) fn excitation(spec: &ExcitationSpec, base: &Path) -> Result<Excitatio
         }
     }
 }
+
+/// Steps over a pulse a driver needs at least. At rest the drivers ask the opening model (or the
+/// reaction test) at each step, so a step as long as the pulse can skip it whole (a 0.5 s
+/// half-sine with `dt = 1` left an arch, and a column, at rest: "0 events"); ten steps over the
+/// pulse see it.
+const STEPS_PER_PULSE: f64 = 10.0;
+
+/// Refuses a step that skips the ground motion: longer than a tenth of a pulse, or than a
+/// record's own step (the record's samples between two steps would be skipped). Column, drum
+/// and loop scenes alike.
+pub(super) fn check_step_resolves(excitation: &Excitation, dt: f64) -> Result<(), SceneError> {
+    let (limit, what) = match excitation {
+        Excitation::None => return Ok(()),
+        Excitation::Pulse(p) => (
+            p.end_time() / STEPS_PER_PULSE,
+            format!(
+                "more than a tenth of the pulse ({} s): at most {}, or the structure at rest can \
+                 miss the pulse",
+                p.end_time(),
+                p.end_time() / STEPS_PER_PULSE
+            ),
+        ),
+        Excitation::Record(r) => (
+            r.dt,
+            format!(
+                "more than the record's own step: at most {}, or the samples between two steps \
+                 are skipped",
+                r.dt
+            ),
+        ),
+    };
+    if dt > limit * (1.0 + 1e-9) {
+        return Err(err("dt", format!("{dt}: {what}")));
+    }
+    Ok(())
+}

@@ -415,6 +415,7 @@ pub fn build(spec: SceneSpec, base: &Path, name: &str) -> Result<Scene, SceneErr
             err(field, e)
         }
     })?;
+    excitation::check_step_resolves(&excitation, spec.dt)?;
     spec.output.check_samples(spec.duration, spec.dt)?;
     Ok(Scene {
         title: spec.title.unwrap_or_else(|| name.to_string()),
