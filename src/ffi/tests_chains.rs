@@ -56,6 +56,35 @@ fn arch_system(
     (code, mass, load, g, gdot)
 }
 
+/// `rocking_arch_system` of `arch` (NULL allowed) with `nj` joints under `gravity` into `mass`
+/// (and `load`), no ground acceleration and no `G`: the calls of the error tests, whose
+/// answers are the code and what stays in the caller's arrays.
+fn arch_system_errors(
+    arch: *const RockingArch,
+    nj: usize,
+    phi: Option<&[f64]>,
+    rates: Option<&[f64]>,
+    gravity: f64,
+    mass: &mut [f64],
+    load: Option<&mut [f64]>,
+) -> i32 {
+    let ptr = |v: Option<&[f64]>| v.map_or(std::ptr::null(), <[f64]>::as_ptr);
+    unsafe {
+        rocking_arch_system(
+            arch,
+            nj,
+            ptr(phi),
+            ptr(rates),
+            0.0,
+            gravity,
+            mass.as_mut_ptr(),
+            load.map_or(std::ptr::null_mut(), <[f64]>::as_mut_ptr),
+            std::ptr::null_mut(),
+            std::ptr::null_mut(),
+        )
+    }
+}
+
 #[allow(clippy::too_many_arguments)]
 fn opening(
     n: usize,
@@ -392,22 +421,11 @@ fn system_helper_errors() {
     let n = ARCH.voussoirs + 1;
     let m = 2 * n;
     let mut mass = vec![3.0; m * m];
-    let call = |arch: &RockingArch, nj: usize, phi: *const f64, mass: &mut [f64]| unsafe {
-        rocking_arch_system(
-            arch,
-            nj,
-            phi,
-            std::ptr::null(),
-            0.0,
-            GRAVITY,
-            mass.as_mut_ptr(),
-            std::ptr::null_mut(),
-            std::ptr::null_mut(),
-            std::ptr::null_mut(),
-        )
+    let call = |arch: &RockingArch, nj: usize, phi: Option<&[f64]>, mass: &mut [f64]| {
+        arch_system_errors(arch, nj, phi, None, GRAVITY, mass, None)
     };
     assert_eq!(
-        call(&ARCH, n - 1, std::ptr::null(), &mut mass),
+        call(&ARCH, n - 1, None, &mut mass),
         ROCKING_ERR_INVALID_SIZE
     );
     assert!(last_error().contains("20 voussoirs has 21 joints"));
@@ -416,7 +434,7 @@ fn system_helper_errors() {
         ..ARCH
     };
     assert_eq!(
-        call(&thick, n, std::ptr::null(), &mut mass),
+        call(&thick, n, None, &mut mass),
         ROCKING_ERR_INVALID_GEOMETRY
     );
     assert!(last_error().contains("arch.thickness"));
@@ -425,7 +443,7 @@ fn system_helper_errors() {
     let mut phi = vec![0.0; m];
     phi[2] = 0.1;
     assert_eq!(
-        call(&ARCH, n, phi.as_ptr(), &mut mass),
+        call(&ARCH, n, Some(&phi), &mut mass),
         ROCKING_ERR_INVALID_ANGLES
     );
     assert!(last_error().contains("phi[2] = 0.1"), "{}", last_error());
@@ -433,37 +451,11 @@ fn system_helper_errors() {
     // A closed joint turning the inadmissible way: the message names the entry of `rates`.
     let mut rates = vec![0.0; m];
     rates[3] = 1.0;
-    let code = unsafe {
-        rocking_arch_system(
-            &ARCH,
-            n,
-            std::ptr::null(),
-            rates.as_ptr(),
-            0.0,
-            GRAVITY,
-            mass.as_mut_ptr(),
-            std::ptr::null_mut(),
-            std::ptr::null_mut(),
-            std::ptr::null_mut(),
-        )
-    };
+    let code = arch_system_errors(&ARCH, n, None, Some(&rates), GRAVITY, &mut mass, None);
     assert_eq!(code, ROCKING_ERR_VELOCITY_ON_CLOSED_DOF);
     assert!(last_error().contains("rates[3] = 1"), "{}", last_error());
     assert!(mass.iter().all(|&x| x == 3.0));
-    let code = unsafe {
-        rocking_arch_system(
-            std::ptr::null(),
-            n,
-            std::ptr::null(),
-            std::ptr::null(),
-            0.0,
-            GRAVITY,
-            mass.as_mut_ptr(),
-            std::ptr::null_mut(),
-            std::ptr::null_mut(),
-            std::ptr::null_mut(),
-        )
-    };
+    let code = arch_system_errors(std::ptr::null(), n, None, None, GRAVITY, &mut mass, None);
     assert_eq!(code, ROCKING_ERR_NULL_POINTER);
     assert!(last_error().contains("arch is NULL"));
     // Colonnade: the joint count, the blocks, the beam.
@@ -531,20 +523,7 @@ fn system_helpers_refuse_gravity_that_is_not_positive() {
     for gravity in [-GRAVITY, 0.0] {
         let mut mass = vec![3.0; 4 * n * n];
         let mut load = vec![3.0; 2 * n];
-        let code = unsafe {
-            rocking_arch_system(
-                &ARCH,
-                n,
-                std::ptr::null(),
-                std::ptr::null(),
-                0.0,
-                gravity,
-                mass.as_mut_ptr(),
-                load.as_mut_ptr(),
-                std::ptr::null_mut(),
-                std::ptr::null_mut(),
-            )
-        };
+        let code = arch_system_errors(&ARCH, n, None, None, gravity, &mut mass, Some(&mut load));
         assert_eq!(
             code, ROCKING_ERR_INVALID_GEOMETRY,
             "arch, gravity = {gravity}"
