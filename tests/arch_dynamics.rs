@@ -445,3 +445,21 @@ fn hinge_closure_table() {
          the model's mechanism after: {open:?}"
     );
 }
+
+/// An impact that leaves the arch at rest reports its kinetic energy after as zero, not the empty
+/// sum's −0.0 (`events.jsonl` printed `"kinetic_after":-0.0` for 13 closings of the bundled
+/// arch scene): the first 3 s of the bundled record, whose closing at 2.82 s ends at rest.
+#[test]
+fn a_closing_to_rest_reports_zero_kinetic_energy_not_negative_zero() {
+    let chain = VoussoirArch::semicircular(5.0, 0.75, 20).chain().unwrap();
+    let motion = rocking::ground::excitation::Excitation::record(bundled_record()).unwrap();
+    let out = from_rest(&chain, &motion, 3.0).unwrap();
+    let after: Vec<f64> = (out.events.iter())
+        .filter_map(|e| match e.kind {
+            LoopEventKind::Closing { kinetic_after, .. } => Some(kinetic_after),
+            _ => None,
+        })
+        .collect();
+    assert!(after.contains(&0.0), "no closing to rest in {after:?}");
+    assert!(after.iter().all(|k| !k.is_sign_negative()), "{after:?}");
+}

@@ -294,6 +294,10 @@ impl<'a> Runner<'a> {
                 .filter(|&a| rates[a] != 0.0)
                 .map(|a| (a, chain.dof_pivot(pose, a))),
         );
+        if moving.is_empty() {
+            // At rest: zero, not the empty sum's −0.0 (which `events.jsonl` printed as `-0.0`).
+            return 0.0;
+        }
         0.5 * moving
             .iter()
             .map(|&(a, pa)| {
