@@ -62,6 +62,16 @@ fn column_mass_matrix_entry_point_matches_eq10_and_checks_input() {
     // The message names the entries of the argument, as the caller indexes them.
     assert!(last_error().contains("phi[0] = 0.1"), "{}", last_error());
     assert_eq!(out, before);
+    // Finite blocks whose derived inertia overflows: the overflow code, naming the inputs (not
+    // an invalid geometry "inertia = inf" the caller never gave).
+    let code = column_mass_matrix(&[1e200, 1e200], None, &mut out, None);
+    assert_eq!(code, ROCKING_ERR_OVERFLOW, "{}", last_error());
+    assert!(
+        last_error().contains("block 0: the inertia") && last_error().contains("width = 1e200"),
+        "{}",
+        last_error()
+    );
+    assert_eq!(out, before);
 }
 
 #[test]

@@ -4,7 +4,7 @@
 //! every input checked and every failure a [`RockingError`] that names the argument.
 
 use crate::error::{ErrorKind, RockingError};
-use crate::model::column::{Block, Column};
+use crate::model::column::{Block, Column, ColumnError};
 use crate::model::configuration;
 
 /// Block data as parallel arrays, bottom block first (the layout of the C ABI).
@@ -38,7 +38,8 @@ pub struct InterfaceSystem {
 /// Checks, in this order: array lengths (`InvalidSize`), `phi` finite (`NotFinite`),
 /// `ground_acceleration` and `gravity` finite (`NotFinite`), `gravity` positive
 /// (`InvalidGeometry`), at most one non-zero DOF per interface with the admissible sign
-/// (`InvalidAngles`), the blocks (`InvalidGeometry`), and a finite result (`Overflow`).
+/// (`InvalidAngles`), the blocks (`InvalidGeometry`; `Overflow` when finite blocks are too large
+/// for double precision, e.g. a derived inertia), and a finite result (`Overflow`).
 pub fn column_system(
     blocks: &BlockArrays<'_>,
     phi: Option<&[f64]>,
@@ -77,7 +78,13 @@ pub fn column_system(
             })
             .collect(),
     )
-    .map_err(|e| RockingError::new(ErrorKind::InvalidGeometry, e.to_string()))?;
+    .map_err(|e| {
+        let kind = match e {
+            ColumnError::TooLarge { .. } => ErrorKind::Overflow,
+            _ => ErrorKind::InvalidGeometry,
+        };
+        RockingError::new(kind, e.to_string())
+    })?;
     let pose = column.pose(phi);
     let system = InterfaceSystem {
         mass: column.mass_matrix(&pose),

@@ -308,6 +308,13 @@ pub fn build(spec: SceneSpec, base: &Path, name: &str) -> Result<Scene, SceneErr
             &format!("blocks[{block}].{}", invalid.field),
             format!("{}: {}", invalid.value, invalid.rule),
         ),
+        crate::model::column::ColumnError::TooLarge { block, quantity } => err(
+            &format!("blocks[{block}]"),
+            format!(
+                "{quantity} is not finite in double precision: the inputs are too large (use \
+                 other units)"
+            ),
+        ),
         other => err("blocks", other),
     })?;
     let excitation = excitation(&spec.excitation, base)?;
@@ -492,6 +499,10 @@ mod tests {
             (
                 GOOD.replace("\"mass\": 10", "\"mass\": 0"),
                 "blocks[0].mass",
+            ),
+            (
+                GOOD.replace("\"width\": 0.2", "\"width\": 1e200"),
+                "blocks[0]: the inertia m (w² + h²) / 12 from mass = 10.0, width = 1e200",
             ),
             (
                 GOOD.replace("\"half_sine\"", "\"square\""),

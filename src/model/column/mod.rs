@@ -85,6 +85,15 @@ pub enum ColumnError {
         /// The field, its value and the rule it breaks.
         invalid: InvalidValue,
     },
+    /// Finite inputs whose derived geometry is not finite in double precision: a block's
+    /// inertia `m (w² + h²) / 12` when none is given, or the column's height.
+    #[error("block {block}: {quantity} is not finite in double precision: the inputs are too large (use other units)")]
+    TooLarge {
+        /// 0-based block index, bottom = 0.
+        block: usize,
+        /// What overflowed, with the inputs it came from.
+        quantity: String,
+    },
 }
 
 /// A validated column of rigid blocks with its reference (straight) geometry.
@@ -122,6 +131,15 @@ impl Column {
             let i = b
                 .inertia
                 .unwrap_or(b.mass * (b.width * b.width + b.height * b.height) / 12.0);
+            if b.inertia.is_none() && !i.is_finite() {
+                return Err(ColumnError::TooLarge {
+                    block: k,
+                    quantity: format!(
+                        "the inertia m (w² + h²) / 12 from mass = {:?}, width = {:?}, height = {:?}",
+                        b.mass, b.width, b.height
+                    ),
+                });
+            }
             positive("inertia", i).map_err(at(k))?;
             let widest = if k == 0 {
                 b.width
@@ -141,6 +159,12 @@ impl Column {
             base_height.push(y);
             inertia.push(i);
             y += b.height;
+            if !y.is_finite() {
+                return Err(ColumnError::TooLarge {
+                    block: k,
+                    quantity: "the height of the column up to the top of this block".to_string(),
+                });
+            }
         }
         Ok(Column {
             blocks,

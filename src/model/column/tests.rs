@@ -141,4 +141,26 @@ fn rejects_bad_blocks() {
         .unwrap_err()
         .to_string()
         .contains("contact_width"));
+    // Finite inputs that overflow: the derived inertia and the stacked height, named as such.
+    assert!(matches!(
+        Column::new(vec![Block::rectangle(1e200, 1.0, 1e10)]),
+        Err(ColumnError::TooLarge { block: 0, .. })
+    ));
+    let tall = Block {
+        inertia: Some(1.0),
+        ..Block::rectangle(1.0, 1e308, 1.0)
+    };
+    assert!(matches!(
+        Column::new(vec![tall; 2]),
+        Err(ColumnError::TooLarge { block: 1, .. })
+    ));
+    // A given inertia is the caller's field: an infinite one stays an invalid block.
+    let given = Block {
+        inertia: Some(f64::INFINITY),
+        ..Block::rectangle(1.0, 1.0, 1.0)
+    };
+    assert!(matches!(
+        Column::new(vec![given]),
+        Err(ColumnError::InvalidBlock { block: 0, .. })
+    ));
 }
