@@ -29,8 +29,23 @@ SONAME=librocking.so.$ABI
 CMAKEDIR=$LIBDIR/cmake/rocking
 FILES="$LIBDIR/$REAL $LIBDIR/$SONAME $LIBDIR/librocking.so $LIBDIR/librocking.a $INCLUDEDIR/rocking.h $LIBDIR/pkgconfig/rocking.pc $CMAKEDIR/rockingConfig.cmake $CMAKEDIR/rockingConfigVersion.cmake"
 
+# The real file an installed soname link points to, if it is one of ours (librocking.so.X in the
+# same directory): the file of the version installed before, whatever this build's version is.
+linked_real() {
+    t=$(readlink "$DEST/$LIBDIR/$SONAME" 2>/dev/null) || return 0
+    case "$t" in librocking.so.*/*|*/*) ;; librocking.so.*) echo "$t" ;; esac
+}
+
 uninstall() {
     removed=0
+    # After a version bump the installed real file is not this version's: the soname link says
+    # which it is.
+    old=$(linked_real)
+    if [ -n "$old" ] && [ "$old" != "$REAL" ] && [ -f "$DEST/$LIBDIR/$old" ]; then
+        rm -f "$DEST/$LIBDIR/$old" || die "cannot remove $DEST/$LIBDIR/$old"
+        echo "removed $DEST/$LIBDIR/$old"
+        removed=$((removed + 1))
+    fi
     for f in $FILES; do
         if [ -e "$DEST/$f" ] || [ -L "$DEST/$f" ]; then
             rm -f "$DEST/$f" || die "cannot remove $DEST/$f"
@@ -64,9 +79,13 @@ stage() {
     cmake_libs=$(echo "$NATIVE_LIBS" | sed 's/-l//g; s/^ *//; s/ *$//; s/  */;/g')
     major=${VERSION%%.*}; rest=${VERSION#*.}; minor=${rest%%.*}
     pointer=$(( $(getconf LONG_BIT) / 8 ))
+    # Values for sed's replacement: `\`, `&` and the delimiter `|` taken literally (a prefix
+    # such as /opt/R&D).
+    lit() { printf '%s' "$1" | sed 's/[\\&|]/\\&/g'; }
+    PREFIX_S=$(lit "$PREFIX"); LIBDIR_S=$(lit "$LIBDIR"); INCLUDEDIR_S=$(lit "$INCLUDEDIR")
     for t in rocking.pc:$LIBDIR/pkgconfig rockingConfig.cmake:$CMAKEDIR rockingConfigVersion.cmake:$CMAKEDIR; do
         name=${t%%:*}; dir=${t#*:}
-        sed -e "s|@PREFIX@|$PREFIX|g" -e "s|@LIBDIR@|$LIBDIR|g" -e "s|@INCLUDEDIR@|$INCLUDEDIR|g" \
+        sed -e "s|@PREFIX@|$PREFIX_S|g" -e "s|@LIBDIR@|$LIBDIR_S|g" -e "s|@INCLUDEDIR@|$INCLUDEDIR_S|g" \
             -e "s|@VERSION@|$VERSION|g" -e "s|@VERSION_MAJOR@|$major|g" -e "s|@VERSION_MINOR@|$minor|g" \
             -e "s|@ABI@|$ABI|g" -e "s|@NATIVE_LIBS@|$NATIVE_LIBS|g" -e "s|@NATIVE_LIBS_CMAKE@|$cmake_libs|g" \
             -e "s|@CMAKE_TO_PREFIX@|$up|g" -e "s|@SIZEOF_VOID_P@|$pointer|g" \
@@ -116,11 +135,17 @@ install() {
         cp -P -T "$BUILD/stage/$f" "$tmp" 2>/dev/null || rollback "cannot write $tmp"
         copied="$copied $tmp"
     done
+    old=$(linked_real)
     for f in $FILES; do
         d=$(dirname "$DEST/$f")
         mv -f -T "$d/.$(basename "$f").rocking-new" "$DEST/$f" || die "cannot rename into $DEST/$f"
         echo "installed $DEST/$f"
     done
+    # The same ABI's earlier version, which no link names any more (another ABI's soname link
+    # and file stay: binaries linked against it still load them).
+    if [ -n "$old" ] && [ "$old" != "$REAL" ] && [ -f "$DEST/$LIBDIR/$old" ]; then
+        rm -f "$DEST/$LIBDIR/$old" && echo "removed the earlier $DEST/$LIBDIR/$old"
+    fi
 }
 
 case "${1:-}" in

@@ -120,6 +120,23 @@ make --no-print-directory uninstall PREFIX="$prefix" > "$work/uninstall.log" 2>&
 left=$(cd "$prefix" && find . \( -type f -o -type l \) | sed 's|^\./||')
 check "uninstall removes exactly what was installed" test "$left" = "lib/someone-elses.so" -a ! -e "$prefix/lib/cmake/rocking"
 
+# A version bump within one ABI: installing the new version over the old removes the old real
+# file (no link names it any more), and uninstall with the old sources removes the new one.
+bump=$work/bump
+make --no-print-directory install PREFIX="$bump" > "$work/bump0.log" 2>&1
+make --no-print-directory install PREFIX="$bump" VERSION=99.0.0 > "$work/bump1.log" 2>&1
+check "a newer version installed over an older one replaces its real file" bash -c \
+    "[ \"\$(readlink '$bump/lib/librocking.so.$abi')\" = librocking.so.99.0.0 ] && [ -f '$bump/lib/librocking.so.99.0.0' ] \
+     && [ ! -e '$bump/lib/librocking.so.$version' ]"
+make --no-print-directory uninstall PREFIX="$bump" > "$work/bump2.log" 2>&1
+check "uninstall after a version bump removes the installed version's file" \
+    test -z "$(cd "$bump" && find . \( -type f -o -type l \))"
+# A prefix with characters that sed's replacement would take as commands.
+amp="$work/R&D|x"
+make --no-print-directory install PREFIX="$amp" > "$work/amp.log" 2>&1 || true
+check "a prefix with & and |: rocking.pc and the CMake package name it as given" bash -c \
+    "grep -qxF 'prefix=$amp' '$amp/lib/pkgconfig/rocking.pc' && grep -qF '$amp' '$amp/lib/cmake/rocking/rockingConfig.cmake'"
+
 echo "== bad input"
 bad=$work/bad
 # `make` then `sudo make install`: root has no cargo on its PATH (sudo's secure_path), and an
