@@ -154,7 +154,7 @@ impl VoussoirArch {
         );
         let rho = self.density * self.depth;
         let n = self.voussoirs;
-        let bodies = (0..n)
+        let bodies: Vec<Body> = (0..n)
             .map(|k| {
                 let (area, centre, polar) = annular_sector(
                     r1,
@@ -169,7 +169,7 @@ impl VoussoirArch {
                 }
             })
             .collect();
-        let joints = (0..=n)
+        let joints: Vec<Joint> = (0..=n)
             .map(|k| {
                 let th = self.joint_polar_angle(k);
                 Joint {
@@ -179,6 +179,12 @@ impl VoussoirArch {
                 }
             })
             .collect();
+        super::check_derived(&bodies, &joints, "arch", || {
+            format!(
+                "{{radius: {:?}, thickness: {:?}, density: {:?}, depth: {:?}}}",
+                self.radius, self.thickness, self.density, self.depth
+            )
+        })?;
         Chain::new(bodies, joints)
     }
 }

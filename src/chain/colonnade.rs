@@ -30,6 +30,22 @@ fn inertia(b: &Block) -> f64 {
         .unwrap_or(b.mass * (b.width * b.width + b.height * b.height) / 12.0)
 }
 
+/// A block's inertia when it is derived (`m (w² + h²) / 12`, none given) and overflows: the
+/// block named with its dimensions, under [`super::TOO_LARGE`], not a derived `inertia = inf`.
+fn check_derived_inertia(field: String, b: &Block) -> Result<(), InvalidValue> {
+    if b.inertia.is_none() && !inertia(b).is_finite() {
+        return Err(InvalidValue {
+            field,
+            value: format!(
+                "{{width: {:?}, height: {:?}, mass: {:?}}}",
+                b.width, b.height, b.mass
+            ),
+            rule: super::TOO_LARGE,
+        });
+    }
+    Ok(())
+}
+
 impl CappedColonnade {
     /// The frame of Makris & Vassiliou: two equal monolithic columns `width × height` of mass
     /// `column_mass`, a beam `span + width` long (flush with the outer faces) of depth
@@ -66,6 +82,7 @@ impl CappedColonnade {
                 validate::positive(f("width"), b.width)?;
                 validate::positive(f("height"), b.height)?;
                 validate::positive(f("mass"), b.mass)?;
+                check_derived_inertia(format!("colonnade.{side}[{k}]"), b)?;
                 validate::positive(f("inertia"), inertia(b))?;
                 if let Some(c) = b.contact_width {
                     validate::positive(f("contact_width"), c)?;
@@ -87,6 +104,7 @@ impl CappedColonnade {
         validate::positive("colonnade.beam.width", self.beam.width)?;
         validate::positive("colonnade.beam.height", self.beam.height)?;
         validate::positive("colonnade.beam.mass", self.beam.mass)?;
+        check_derived_inertia("colonnade.beam".to_string(), &self.beam)?;
         validate::positive("colonnade.beam.inertia", inertia(&self.beam))?;
         validate::positive("colonnade.span", self.span)?;
         let (hl, hr) = (

@@ -199,6 +199,40 @@ impl MassDof {
     }
 }
 
+/// The rule of a chain built from finite dimensions whose derived geometry (a body's mass,
+/// inertia or centre, a joint's centre) is not finite: the C helpers answer it with the overflow
+/// code.
+pub const TOO_LARGE: &str = "gives bodies or joints whose mass, inertia or position is not finite \
+                             in double precision: too large (use other units)";
+
+/// [`TOO_LARGE`] naming the shape's own fields (`field`, their values in `value`) when a body or
+/// joint derived from them is not finite, before [`Chain::new`] would name a derived `bodies[j]`
+/// the caller never gave.
+pub(crate) fn check_derived(
+    bodies: &[Body],
+    joints: &[Joint],
+    field: &str,
+    value: impl FnOnce() -> String,
+) -> Result<(), InvalidValue> {
+    let finite = bodies.iter().all(|b| {
+        b.mass.is_finite() && b.inertia.is_finite() && b.centre.iter().all(|c| c.is_finite())
+    }) && joints.iter().all(|j| {
+        j.centre
+            .iter()
+            .chain([&j.half_width])
+            .all(|c| c.is_finite())
+    });
+    if finite {
+        Ok(())
+    } else {
+        Err(InvalidValue {
+            field: field.to_string(),
+            value: value(),
+            rule: TOO_LARGE,
+        })
+    }
+}
+
 impl Chain {
     /// Validates bodies and joints: masses and inertias finite and positive, centres finite,
     /// normals finite and non-zero (they are normalised), half widths finite and positive, and

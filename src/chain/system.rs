@@ -25,7 +25,13 @@ pub struct LoopSystem {
 }
 
 fn geometry(e: crate::validate::InvalidValue) -> RockingError {
-    RockingError::new(ErrorKind::InvalidGeometry, e.to_string())
+    // Finite dimensions too large for double precision: the overflow code, as for a column.
+    let kind = if e.rule == super::TOO_LARGE {
+        ErrorKind::Overflow
+    } else {
+        ErrorKind::InvalidGeometry
+    };
+    RockingError::new(kind, e.to_string())
 }
 
 /// The system of `chain` at the DOF angles `phi` (`None`: the reference geometry) and rates
@@ -96,7 +102,8 @@ pub fn loop_system(
 }
 
 /// The loop of a voussoir arch, checking that the caller's joint count `n_interfaces` is its
-/// `voussoirs + 1` (`InvalidSize`) and its fields (`InvalidGeometry`, naming the field).
+/// `voussoirs + 1` (`InvalidSize`) and its fields (`InvalidGeometry`, naming the field;
+/// `Overflow` when finite dimensions give voussoirs too large for double precision).
 pub fn arch_chain(arch: &VoussoirArch, n_interfaces: usize) -> Result<Chain, RockingError> {
     configuration::check_size(n_interfaces)?;
     if arch.voussoirs.checked_add(1) != Some(n_interfaces) {
@@ -220,6 +227,36 @@ mod tests {
         .unwrap_err();
         assert_eq!(e.kind, ErrorKind::InvalidGeometry);
         assert!(e.detail.contains("colonnade.right"), "{}", e.detail);
+        // Finite dimensions whose voussoirs or blocks overflow: the overflow code, naming the
+        // shape and its inputs (not a derived `bodies[0].mass = NaN` the caller never gave).
+        let huge = VoussoirArch {
+            radius: 1e200,
+            thickness: 1.5e199,
+            ..arch
+        };
+        let e = arch_chain(&huge, 9).unwrap_err();
+        assert_eq!(e.kind, ErrorKind::Overflow, "{}", e.detail);
+        assert!(
+            e.detail
+                .starts_with("arch = {radius: 1e200, thickness: 1.5e199"),
+            "{}",
+            e.detail
+        );
+        let e = colonnade_chain(
+            &[[1e200, 3.0, 1.0]],
+            &[[1e200, 3.0, 1.0]],
+            [4.0, 0.5, 1.0],
+            3.0,
+            4,
+        )
+        .unwrap_err();
+        assert_eq!(e.kind, ErrorKind::Overflow, "{}", e.detail);
+        assert!(
+            e.detail
+                .starts_with("colonnade.left[0] = {width: 1e200, height: 3.0, mass: 1.0}"),
+            "{}",
+            e.detail
+        );
     }
 
     #[test]
