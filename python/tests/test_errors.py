@@ -141,6 +141,8 @@ def test_opening_model_errors(two_blocks, change, c_name, detail):
     # documented positive; -9.81 turned the weight's load upside down, silently
     (dict(gravity=-9.81), "ROCKING_ERR_INVALID_GEOMETRY", "gravity = -9.81: must be a finite number greater than zero"),
     (dict(gravity=0.0), "ROCKING_ERR_INVALID_GEOMETRY", "gravity = 0.0: must be a finite number greater than zero"),
+    # finite blocks whose derived inertia overflows: named with their inputs, not "inertia = inf"
+    (dict(width=[1e200, 1e200]), "ROCKING_ERR_OVERFLOW", "block 0: the inertia m (w² + h²) / 12 from mass = 15.0, width = 1e200"),
 ])
 def test_column_mass_matrix_errors(change, c_name, detail):
     args = dict(width=[0.1, 0.1], height=[0.3, 0.3], mass=[15.0, 15.0])
