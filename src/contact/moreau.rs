@@ -84,6 +84,9 @@ pub struct SchemeOptions {
     /// and a slip that stops within a step is booked as friction. `false` (the default): the
     /// scheme as before.
     pub energy_consistent: bool,
+    /// Opt-in: condense the drums stuck together into rigid clusters for the step's problem,
+    /// checked and otherwise redone in full ([`super::clusters`]). `false`: the scheme as before.
+    pub clusters: bool,
 }
 
 impl Default for SchemeOptions {
@@ -97,6 +100,7 @@ impl Default for SchemeOptions {
             gravity: crate::model::column::GRAVITY,
             energy_tolerance: None,
             energy_consistent: false,
+            clusters: false,
         }
     }
 }
@@ -216,6 +220,9 @@ pub struct Stepper {
     pub(super) touch_gap: f64,
     /// Set by the error control for its retries with `energy_consistent`: every landing located.
     pub(super) slow_landings: bool,
+    pub(super) cluster_work: Option<Box<super::clusters::ClusterWork>>,
+    /// Condensed steps ([`SchemeOptions::clusters`]).
+    pub cluster_counters: super::clusters::ClusterCounters,
 }
 
 #[derive(Clone, Debug)]
@@ -291,6 +298,10 @@ impl Stepper {
             impact_gap: 0.0,
             touch_gap: 1e-9 * size,
             slow_landings: false,
+            cluster_work: options
+                .clusters
+                .then(|| Box::new(super::clusters::ClusterWork::new(&masses, &inertias))),
+            cluster_counters: Default::default(),
             q,
             drums,
         };
@@ -378,6 +389,9 @@ impl Stepper {
             MAX_SPLITS
         };
         self.locate_slow_landings(h);
+        if self.options.clusters && self.try_clusters(h, motion)? {
+            return Ok(());
+        }
         loop {
             let remaining = t_end - self.t;
             if remaining <= 1e-12 * h {
