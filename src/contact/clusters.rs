@@ -22,8 +22,10 @@
 //!
 //! The projection of the positions after the step is the full one ([`super::projection`]).
 
-use super::drums::ContactRows;
-use super::friction::{dot3, ContactProblem, JointContacts, JointStatus, Slip, B3};
+use super::drums::{ContactRows, JointGeometry};
+use super::friction::{
+    dot3, invert3, ContactProblem, JointContacts, JointStatus, Slip, SolveReport, B3,
+};
 use super::moreau::Stepper;
 use crate::ground::GroundMotion;
 
@@ -77,6 +79,14 @@ pub(super) struct ClusterWork {
     v_new: Vec<f64>,
     /// Impulses `(P_R, P_L, T)` of the condensed joints.
     p: Vec<[f64; 3]>,
+    /// Inverse of each condensed joint's rows for its upper drum.
+    inv: Vec<B3>,
+    /// The drums' free velocities.
+    vf: Vec<f64>,
+    /// The geometry before the step (swapped in and out, for a missed landing).
+    geometry: Vec<JointGeometry>,
+    /// The condensed problem's report, booked with the step.
+    report: SolveReport,
 }
 
 impl ClusterWork {
@@ -99,6 +109,10 @@ impl ClusterWork {
             w: vec![0.0; 3 * n],
             v_new: vec![0.0; 3 * n],
             p: vec![[0.0; 3]; n],
+            inv: vec![[[0.0; 3]; 3]; n],
+            vf: vec![0.0; 3 * n],
+            geometry: vec![JointGeometry::default(); n],
+            report: SolveReport::default(),
         }
     }
 }
@@ -137,38 +151,17 @@ fn moved(r: [f64; 3], d: [f64; 2]) -> [f64; 3] {
     [r[0], r[1], r[2] - r[0] * d[1] + r[1] * d[0]]
 }
 
-/// Solves `Σ_a m[a][i] x[a] = r[i]` (the transpose of the rows `m`) or `m x = r` (`transpose`
-/// false) by Cramer's rule; `None` if singular.
-fn solve3(m: &B3, r: [f64; 3], transpose: bool) -> Option<[f64; 3]> {
-    let a = if transpose {
-        let mut t = [[0.0; 3]; 3];
-        for i in 0..3 {
-            for j in 0..3 {
-                t[i][j] = m[j][i];
-            }
-        }
-        t
-    } else {
-        *m
-    };
-    let det3 = |a: &B3| {
-        a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1])
-            - a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0])
-            + a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0])
-    };
-    let d = det3(&a);
-    if !(d.abs() > 0.0 && d.is_finite()) {
-        return None;
-    }
+/// `m r` (`transpose` false) or `mᵀ r`.
+fn times(m: &B3, r: [f64; 3], transpose: bool) -> [f64; 3] {
     let mut x = [0.0; 3];
-    for (c, xc) in x.iter_mut().enumerate() {
-        let mut b = a;
-        for i in 0..3 {
-            b[i][c] = r[i];
-        }
-        *xc = det3(&b) / d;
+    for (i, xi) in x.iter_mut().enumerate() {
+        *xi = if transpose {
+            m[0][i] * r[0] + m[1][i] * r[1] + m[2][i] * r[2]
+        } else {
+            m[i][0] * r[0] + m[i][1] * r[1] + m[i][2] * r[2]
+        };
     }
-    Some(x)
+    x
 }
 
 impl Stepper {
@@ -259,24 +252,23 @@ impl Stepper {
             self.cluster_counters.full += 1;
             return Ok(false);
         }
-        self.save();
         let qm = std::mem::take(&mut cw.qm);
         let solved = self.condensed_solve(cw, &qm, h, a);
         cw.qm = qm;
-        if solved && self.condensed_finish(cw, h, a, t_end) {
-            if self.missed_landing(h).is_none() {
-                self.project(a1, true)?;
-                self.counters.substeps += 1;
-                self.cluster_counters.condensed += 1;
-                let joints = cw.condensed.iter().filter(|&&c| c).count();
-                self.cluster_counters.condensed_joints += joints as u64;
-                self.cluster_counters.clusters += cw.first.len() as u64;
-                return Ok(true);
-            }
-            self.cluster_counters.other += 1;
+        if !solved {
+            return Ok(false);
         }
-        self.restore();
-        Ok(false)
+        if !self.condensed_finish(cw, h, a, t_end) {
+            self.cluster_counters.other += 1;
+            return Ok(false);
+        }
+        self.project(a1, true)?;
+        self.counters.substeps += 1;
+        self.cluster_counters.condensed += 1;
+        let joints = cw.condensed.iter().filter(|&&c| c).count();
+        self.cluster_counters.condensed_joints += joints as u64;
+        self.cluster_counters.clusters += cw.first.len() as u64;
+        Ok(true)
     }
 
     /// The drums' free velocity `v + h M⁻¹ f` (the full sub-step's numbers).
@@ -304,6 +296,10 @@ impl Stepper {
             cw.of[j] = cw.first.len() - 1;
         }
         let nc = cw.first.len();
+        for j in 0..n {
+            let vf = self.free_velocity(j, a, h);
+            cw.vf[3 * j..3 * j + 3].copy_from_slice(&vf);
+        }
         for c in 0..nc {
             let (s, e) = (cw.first[c], cw.first.get(c + 1).copied().unwrap_or(n));
             if e - s == 1 {
@@ -311,8 +307,7 @@ impl Stepper {
                 cw.inertia[c] = self.drums.inertia(s);
                 cw.centre[c] = [qm[3 * s], qm[3 * s + 1]];
                 cw.problem.inv_mass[c] = self.problem.inv_mass[s];
-                let vf = self.free_velocity(s, a, h);
-                cw.vc[3 * c..3 * c + 3].copy_from_slice(&vf);
+                cw.vc[3 * c..3 * c + 3].copy_from_slice(&cw.vf[3 * s..3 * s + 3]);
                 cw.w[3 * s..3 * s + 3].iter_mut().for_each(|x| *x = 0.0);
                 continue;
             }
@@ -346,7 +341,8 @@ impl Stepper {
                 }
                 [px / m, py / m, l / inertia]
             };
-            let vf = momentum(self, &|j| self.free_velocity(j, a, h));
+            let vfs = &cw.vf;
+            let vf = momentum(self, &|j| [vfs[3 * j], vfs[3 * j + 1], vfs[3 * j + 2]]);
             cw.vc[3 * c..3 * c + 3].copy_from_slice(&vf);
             // w: the prescribed rates `−s` joint by joint from the bottom drum, then its rigid
             // part removed.
@@ -360,10 +356,12 @@ impl Stepper {
                     -sh[1] - dot3(&low[1], &wl),
                     -sh[2] - dot3(&low[2], &wl),
                 ];
-                let Some(x) = solve3(&cw.up[j], rhs, false) else {
+                let Some(inv) = invert3(&cw.up[j], 3) else {
                     self.cluster_counters.other += 1;
                     return false;
                 };
+                cw.inv[j] = inv;
+                let x = times(&inv, rhs, false);
                 cw.w[3 * j..3 * j + 3].copy_from_slice(&x);
             }
             let wv = &cw.w;
@@ -425,10 +423,7 @@ impl Stepper {
             self.cluster_counters.other += 1;
             return false;
         };
-        self.counters.solves += 1;
-        self.counters.iterations += report.iterations as u64;
-        self.counters.fallbacks += report.fallback as u64;
-        self.counters.inexact += report.inexact as u64;
+        cw.report = report;
         cw.problem.apply(&mut cw.vc[..3 * nc]);
         // The column coming to rest: the full path (it removes the velocities left).
         let all_stuck = (0..nc).all(|c| {
@@ -459,7 +454,7 @@ impl Stepper {
             if !cw.condensed[j] {
                 continue;
             }
-            let vf = self.free_velocity(j, a, h);
+            let vf = &cw.vf[3 * j..3 * j + 3];
             let (mj, ij) = (self.drums.mass(j), self.drums.inertia(j));
             let vn = &cw.v_new[3 * j..3 * j + 3];
             let mut r = [
@@ -478,10 +473,7 @@ impl Stepper {
                     *ri -= low[0][i] * p[0] + low[1][i] * p[1] + low[2][i] * p[2];
                 }
             }
-            let Some(p) = solve3(&cw.up[j], r, true) else {
-                self.cluster_counters.other += 1;
-                return false;
-            };
+            let p = times(&cw.inv[j], r, true);
             let nn = p[0] + p[1];
             let mu = self.mu[j];
             if !(p[0] > MARGIN * nn && p[1] > MARGIN * nn && p[2].abs() < (1.0 - MARGIN) * mu * nn)
@@ -494,8 +486,9 @@ impl Stepper {
         true
     }
 
-    /// Positions, the accounts, the statuses and the carried ends of the condensed step; the
-    /// geometry at its end. `false`: a landing the prediction missed (the caller restores).
+    /// Positions and the geometry at the end of the condensed step; unless a landing the
+    /// prediction missed is found there (`false`: the state is put back as it was), the accounts,
+    /// the statuses and the carried ends.
     fn condensed_finish(&mut self, cw: &mut ClusterWork, h: f64, a: f64, t_end: f64) -> bool {
         let n = self.drums.len();
         let theta = self.options.theta;
@@ -508,31 +501,45 @@ impl Stepper {
             let dx = self.q_next[3 * j] - self.q[3 * j];
             work += -self.drums.mass(j) * a * dx;
         }
+        // The state before stays in the swapped buffers until the missed-landing check.
+        std::mem::swap(&mut self.v, &mut cw.v_new);
+        std::mem::swap(&mut self.q, &mut self.q_next);
+        std::mem::swap(&mut self.geometry, &mut cw.geometry);
+        self.update_geometry();
+        if self.missed_landing(h).is_some() {
+            std::mem::swap(&mut self.v, &mut cw.v_new);
+            std::mem::swap(&mut self.q, &mut self.q_next);
+            std::mem::swap(&mut self.geometry, &mut cw.geometry);
+            return false;
+        }
+        self.t = t_end;
         self.energy.ground_work += work;
+        let report = cw.report;
+        self.counters.solves += 1;
+        self.counters.iterations += report.iterations as u64;
+        self.counters.fallbacks += report.fallback as u64;
+        self.counters.inexact += report.inexact as u64;
         for k in 0..n {
-            let (p, ua) = if cw.condensed[k] {
-                (cw.p[k], rates(&cw.up[k], &cw.low[k], &cw.v_new, k))
+            let p = if cw.condensed[k] {
+                // Its work is zero: `U⁺ = −s = −U⁻` on its rows (`H_k (T u + w) = H_k w`).
+                let p = cw.p[k];
+                self.joint_impulses[k] = [p[0] + p[1], p[2]];
+                p
             } else {
                 let c = cw.of[k];
                 self.statuses[k] = cw.statuses[c];
                 let u = cw.problem.rates(c);
                 let sh = self.shifts[k];
-                (
-                    cw.problem.impulses(c),
-                    [u[0] - sh[0], u[1] - sh[1], u[2] - sh[2]],
-                )
+                let p = cw.problem.impulses(c);
+                self.book(k, p, [u[0] - sh[0], u[1] - sh[1], u[2] - sh[2]]);
+                p
             };
-            self.book(k, p, ua);
             let st = self.statuses[k];
             self.carried[k] = [
                 self.flags[k][0] && st.closed[0] && p[0] > 0.0,
                 self.flags[k][1] && st.closed[1] && p[1] > 0.0,
             ];
         }
-        std::mem::swap(&mut self.v, &mut cw.v_new);
-        std::mem::swap(&mut self.q, &mut self.q_next);
-        self.t = t_end;
-        self.update_geometry();
         true
     }
 

@@ -27,9 +27,12 @@ fn max_abs(v: &[f64]) -> f64 {
 struct OneStep {
     condensed: usize,
     /// Largest difference of the velocities and of the positions of a condensed step from the full
-    /// step's (relative to the largest velocity and to the step's largest displacement).
+    /// step's (relative to the largest velocity and to the step's largest displacement, or a
+    /// millionth of the largest coordinate if larger).
     worst_v: f64,
     worst_q: f64,
+    /// Condensed steps where one of the two projected the positions and the other did not.
+    projection_flips: usize,
     /// Steps whose full step opened or slipped a joint that was closed, sticking and carrying
     /// both corners (one that could condense); of those, the steps taken condensed, and those
     /// redone in full because the check of a condensed joint's impulse failed.
@@ -76,8 +79,15 @@ fn one_step_against_full(steps: usize) -> OneStep {
                 r.worst_v = r.worst_v.max((st.v[i] - full.v[i]).abs() / scale_v);
                 scale_q = scale_q.max((full.q[i] - full.saved.as_ref().unwrap().q[i]).abs());
             }
-            for i in 0..3 * n {
-                r.worst_q = r.worst_q.max((st.q[i] - full.q[i]).abs() / scale_q);
+            // Positions of the order of 10 m: their last bits are 1e-15 m whatever the step.
+            let scale_q = scale_q.max(1e-6 * max_abs(&full.q));
+            // The projection runs when a gap exceeds its tolerance: rounding can decide it.
+            if st.counters.projections != full.counters.projections {
+                r.projection_flips += 1;
+            } else {
+                for i in 0..3 * n {
+                    r.worst_q = r.worst_q.max((st.q[i] - full.q[i]).abs() / scale_q);
+                }
             }
         }
         if (0..n).any(|k| condensable[k] && !held(k)) {
@@ -94,13 +104,19 @@ fn one_step_against_full(steps: usize) -> OneStep {
 }
 
 /// From the same state, a condensed step gives the full step's velocities and positions up to
-/// rounding.
+/// rounding (but for the rare step where rounding decides whether a gap is over the projection's
+/// tolerance).
 #[test]
 fn a_condensed_step_is_the_full_step() {
     let r = one_step_against_full(20_000);
     assert!(r.condensed > 10_000, "{} condensed steps", r.condensed);
     assert!(r.worst_v < 1e-10, "velocities differ by {:e}", r.worst_v);
     assert!(r.worst_q < 1e-10, "positions differ by {:e}", r.worst_q);
+    assert!(
+        r.projection_flips * 1000 < r.condensed,
+        "{} flips",
+        r.projection_flips
+    );
 }
 
 /// Where a joint that could condense must break (the full step opens it or slips it), the step is
