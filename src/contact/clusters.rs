@@ -17,12 +17,16 @@
 //! answer, with the condensed joints' impulses (from the cluster's drums top down:
 //! `Up_jᵀ P_j = M_j (v⁺_j − v_free_j) − Low_{j+1}ᵀ P_{j+1}`), satisfies every condition of the
 //! full problem if those impulses are admissible (both corners pressed, `|T| < μ N`, with a
-//! margin): then it is the full step's answer up to rounding. If one is not, or a landing is to be
-//! located, missed, or the column comes to rest, the step is redone by the full path.
+//! margin): then it is the full step's answer up to rounding. If one is not, or the column comes
+//! to rest, the sub-step is redone by the full path.
 //!
-//! The projection of the positions after the step is the full one ([`super::projection`]).
+//! The hook is [`Stepper::substep`]: the step's sub-steps and those of the located impacts are
+//! condensed; the landings' prediction, location and missed-landing check, the impact problems
+//! and the projection of the positions after the sub-step ([`super::projection`]) are the full
+//! ones. A condensed joint's contact work is not booked: it is zero by construction
+//! (`U⁺ = −s = −U⁻`).
 
-use super::drums::{ContactRows, JointGeometry};
+use super::drums::ContactRows;
 use super::friction::{
     dot3, invert3, ContactProblem, JointContacts, JointStatus, Slip, SolveReport, B3,
 };
@@ -33,19 +37,20 @@ use crate::ground::GroundMotion;
 /// scheme's outputs stay as they were).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct ClusterCounters {
-    /// Steps taken condensed.
+    /// Sub-steps taken condensed (the step's, and those of the located impacts: the trial, the
+    /// sub-step to the impact and the rest of the step; the impact's own problem stays full).
     pub condensed: u64,
-    /// Joints condensed, summed over those steps.
+    /// Joints condensed, summed over those sub-steps.
     pub condensed_joints: u64,
-    /// Clusters (bodies of the condensed problem), summed over those steps.
+    /// Clusters (bodies of the condensed problem), summed over those sub-steps.
     pub clusters: u64,
-    /// Steps tried condensed and redone by the full path: a condensed joint's impulse not
-    /// admissible (it would slip or open).
+    /// Sub-steps tried condensed and redone in full: a condensed joint's impulse not admissible
+    /// (it would slip or open).
     pub broken: u64,
-    /// Steps tried and redone for another reason (a landing the prediction missed, the column
-    /// coming to rest, a problem the solvers could not solve).
+    /// Sub-steps tried and redone in full for another reason (the column coming to rest, a
+    /// singular joint, a problem the solvers could not solve).
     pub other: u64,
-    /// Steps taken by the full path without a try (no joint to condense, a landing to locate).
+    /// Sub-steps taken in full without a try (no joint to condense).
     pub full: u64,
 }
 
@@ -83,8 +88,6 @@ pub(super) struct ClusterWork {
     inv: Vec<B3>,
     /// The drums' free velocities.
     vf: Vec<f64>,
-    /// The geometry before the step (swapped in and out, for a missed landing).
-    geometry: Vec<JointGeometry>,
     /// The condensed problem's report, booked with the step.
     report: SolveReport,
 }
@@ -111,7 +114,6 @@ impl ClusterWork {
             p: vec![[0.0; 3]; n],
             inv: vec![[[0.0; 3]; 3]; n],
             vf: vec![0.0; 3 * n],
-            geometry: vec![JointGeometry::default(); n],
             report: SolveReport::default(),
         }
     }
@@ -165,43 +167,36 @@ fn times(m: &B3, r: [f64; 3], transpose: bool) -> [f64; 3] {
 }
 
 impl Stepper {
-    /// Tries the step of length `h` condensed; `Ok(true)` if taken, `Ok(false)` if the full path
-    /// is to take it (the state is then as it was).
-    pub(super) fn try_clusters(
+    /// Tries the sub-step of length `h` ([`Stepper::substep`], `excluded` ends kept out of its
+    /// index set) condensed; `Ok(true)` if taken, `Ok(false)` if the full sub-step is to take it
+    /// (the state is then as it was). A landing the prediction missed is reported as the full
+    /// sub-step does (`missed_found`, the state advanced: the caller restores it).
+    pub(super) fn condensed_substep(
         &mut self,
         h: f64,
         motion: &dyn GroundMotion,
+        excluded: Option<&[[bool; 2]]>,
     ) -> Result<bool, super::moreau::StepError> {
         let o = self.options;
+        if o.energy_consistent || !o.persistent_restitution || !o.project || self.skip_projection {
+            return Ok(false);
+        }
         let Some(mut cw) = self.cluster_work.take() else {
             return Ok(false);
         };
-        let taken = if o.energy_consistent
-            || self.slow_landings
-            || !o.locate_impacts
-            || !o.persistent_restitution
-            || !o.project
-        {
-            Ok(false)
-        } else {
-            self.cluster_step(&mut cw, h, motion)
-        };
+        let taken = self.cluster_substep(&mut cw, h, motion, excluded);
         self.cluster_work = Some(cw);
         taken
     }
 
-    fn cluster_step(
+    fn cluster_substep(
         &mut self,
         cw: &mut ClusterWork,
         h: f64,
         motion: &dyn GroundMotion,
+        excluded: Option<&[[bool; 2]]>,
     ) -> Result<bool, super::moreau::StepError> {
         let n = self.drums.len();
-        self.record_start_rates();
-        if self.next_landing(h).is_some() {
-            self.cluster_counters.full += 1;
-            return Ok(false);
-        }
         let theta = self.options.theta;
         let t_end = self.t + h;
         let a = motion.acceleration(self.t + theta * h);
@@ -216,8 +211,15 @@ impl Stepper {
         for k in 0..n {
             for c in 0..2 {
                 let e = &self.geometry[k].ends[c];
-                self.flags[k][c] =
-                    e.gap <= self.touch_gap || e.gap + h * self.start_rates[k][c][1] <= 0.0;
+                let un = || {
+                    if self.rates_fresh {
+                        self.start_rates[k][c][1]
+                    } else {
+                        self.drums.rates(&e.rows, &self.v, k).0
+                    }
+                };
+                self.flags[k][c] = !excluded.is_some_and(|e| e[k][c])
+                    && (e.gap <= self.touch_gap || e.gap + h * un() <= 0.0);
             }
             let act = self.flags[k];
             let w = ContactProblem::tangent_weights(act);
@@ -247,7 +249,6 @@ impl Stepper {
                 && self.mu[k] > 0.0;
             any |= cw.condensed[k];
         }
-        self.rates_fresh = false;
         if !any {
             self.cluster_counters.full += 1;
             return Ok(false);
@@ -258,13 +259,17 @@ impl Stepper {
         if !solved {
             return Ok(false);
         }
-        if !self.condensed_finish(cw, h, a, t_end) {
-            self.cluster_counters.other += 1;
-            return Ok(false);
+        self.rates_fresh = false;
+        self.condensed_finish(cw, h, a, t_end);
+        self.cluster_counters.condensed += 1;
+        if self.watching {
+            if let Some(tau) = self.missed_landing(h) {
+                self.missed_found = Some(tau);
+                return Ok(true);
+            }
         }
         self.project(a1, true)?;
         self.counters.substeps += 1;
-        self.cluster_counters.condensed += 1;
         let joints = cw.condensed.iter().filter(|&&c| c).count();
         self.cluster_counters.condensed_joints += joints as u64;
         self.cluster_counters.clusters += cw.first.len() as u64;
@@ -486,10 +491,9 @@ impl Stepper {
         true
     }
 
-    /// Positions and the geometry at the end of the condensed step; unless a landing the
-    /// prediction missed is found there (`false`: the state is put back as it was), the accounts,
-    /// the statuses and the carried ends.
-    fn condensed_finish(&mut self, cw: &mut ClusterWork, h: f64, a: f64, t_end: f64) -> bool {
+    /// Positions, the accounts, the statuses and the carried ends of the condensed sub-step; the
+    /// geometry at its end.
+    fn condensed_finish(&mut self, cw: &mut ClusterWork, h: f64, a: f64, t_end: f64) {
         let n = self.drums.len();
         let theta = self.options.theta;
         let mut work = 0.0;
@@ -501,18 +505,10 @@ impl Stepper {
             let dx = self.q_next[3 * j] - self.q[3 * j];
             work += -self.drums.mass(j) * a * dx;
         }
-        // The state before stays in the swapped buffers until the missed-landing check.
         std::mem::swap(&mut self.v, &mut cw.v_new);
         std::mem::swap(&mut self.q, &mut self.q_next);
-        std::mem::swap(&mut self.geometry, &mut cw.geometry);
-        self.update_geometry();
-        if self.missed_landing(h).is_some() {
-            std::mem::swap(&mut self.v, &mut cw.v_new);
-            std::mem::swap(&mut self.q, &mut self.q_next);
-            std::mem::swap(&mut self.geometry, &mut cw.geometry);
-            return false;
-        }
         self.t = t_end;
+        self.update_geometry();
         self.energy.ground_work += work;
         let report = cw.report;
         self.counters.solves += 1;
@@ -540,7 +536,6 @@ impl Stepper {
                 self.flags[k][1] && st.closed[1] && p[1] > 0.0,
             ];
         }
-        true
     }
 
     /// The contact work of joint `k` in a condensed step (the full sub-step's accounts, without

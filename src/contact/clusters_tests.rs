@@ -56,6 +56,7 @@ fn one_step_against_full(steps: usize) -> OneStep {
         let mut full = st.clone();
         full.options.clusters = false;
         let before = st.cluster_counters;
+        let located = st.counters.located_impacts;
         let condensable: Vec<bool> = (0..n)
             .map(|k| {
                 k > 0
@@ -71,7 +72,13 @@ fn one_step_against_full(steps: usize) -> OneStep {
         let held = |k: usize| {
             full.statuses[k].closed == [true, true] && full.statuses[k].slip == Slip::Stick
         };
-        if st.cluster_counters.condensed > before.condensed {
+        // A whole step condensed: one sub-step, no impact located (an impact's problem is the
+        // full one).
+        let whole = st.cluster_counters.condensed == before.condensed + 1
+            && st.counters.located_impacts == full.counters.located_impacts
+            && st.counters.substeps == full.counters.substeps
+            && full.counters.located_impacts == located;
+        if whole {
             r.condensed += 1;
             let scale_v = max_abs(&full.v);
             let mut scale_q = 0.0_f64;
@@ -92,7 +99,7 @@ fn one_step_against_full(steps: usize) -> OneStep {
         }
         if (0..n).any(|k| condensable[k] && !held(k)) {
             r.breaks += 1;
-            if st.cluster_counters.condensed > before.condensed {
+            if whole {
                 r.missed_breaks += 1;
             }
             if st.cluster_counters.broken > before.broken {

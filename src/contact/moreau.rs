@@ -389,9 +389,6 @@ impl Stepper {
             MAX_SPLITS
         };
         self.locate_slow_landings(h);
-        if self.options.clusters && self.try_clusters(h, motion)? {
-            return Ok(());
-        }
         loop {
             let remaining = t_end - self.t;
             if remaining <= 1e-12 * h {
@@ -459,6 +456,9 @@ impl Stepper {
         motion: &dyn GroundMotion,
         excluded: Option<&[[bool; 2]]>,
     ) -> Result<(), StepError> {
+        if self.options.clusters && self.condensed_substep(h, motion, excluded)? {
+            return Ok(());
+        }
         let n = self.drums.len();
         let theta = self.options.theta;
         let a = motion.acceleration(self.t + theta * h);
