@@ -176,7 +176,7 @@ pub struct Stepper {
     pub(super) v_free: Vec<f64>,
     pub(super) q_next: Vec<f64>,
     pub(super) dq: Vec<f64>,
-    pub(super) saved: Option<Box<Saved>>,
+    pub(super) saved: Option<Box<super::landing::Saved>>,
     /// Contact tolerance on gaps (m).
     pub(super) contact_gap: f64,
     /// Projection tolerance on gaps (m).
@@ -223,19 +223,6 @@ pub struct Stepper {
     pub(super) cluster_work: Option<Box<super::clusters::ClusterWork>>,
     /// Condensed steps ([`SchemeOptions::clusters`]).
     pub cluster_counters: super::clusters::ClusterCounters,
-}
-
-#[derive(Clone, Debug)]
-pub(super) struct Saved {
-    pub(super) t: f64,
-    pub(super) q: Vec<f64>,
-    pub(super) v: Vec<f64>,
-    pub(super) statuses: Vec<JointStatus>,
-    pub(super) energy: EnergyAccounts,
-    pub(super) counters: StepCounters,
-    pub(super) joint_impulses: Vec<[f64; 2]>,
-    pub(super) carried: Vec<[bool; 2]>,
-    pub(super) geometry: Vec<JointGeometry>,
 }
 
 impl Stepper {
