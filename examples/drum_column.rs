@@ -6,11 +6,12 @@
 //! cargo run --release --example drum_column -- --drums 10 --width 1 --height 1 \
 //!     --record RECORD.AT2 --pga 4 --mu 0.5 --dt 0.001 [--duration 30] [--impacts 1] \
 //!     [--scheme moreau|auto] [--locate 0|1] [--persistent 0|1] [--projection 0|1] \
-//!     [--consistent 0|1] [--energy-tol T]
+//!     [--consistent 0|1] [--energy-tol T] [--clusters 0|1]
 //! ```
 //!
 //! `--consistent 1`: `SchemeOptions::energy_consistent` (docs/energy-control.md); `--energy-tol`:
-//! the error control.
+//! the error control. `--clusters 1`: `SchemeOptions::clusters` (condensed steps, docs/multidrum.md);
+//! the JSON then ends with their counters (`"clusters"`).
 //!
 //! `--locate 0 --persistent 0 --projection 0` (all default 1) is plain Moreau–Jean, the scheme
 //! of the Siconos peer: no impact located inside the step, restitution zero at every contact
@@ -39,6 +40,7 @@ fn main() {
     let (mut locate, mut persistent, mut projection) = (true, true, true);
     let mut consistent = false;
     let mut energy_tol: Option<f64> = None;
+    let mut clusters = false;
     while let Some(a) = args.next() {
         let v = args.next().unwrap_or_else(|| panic!("{a} needs a value"));
         match a.as_str() {
@@ -57,6 +59,7 @@ fn main() {
             "--projection" => projection = v != "0",
             "--consistent" => consistent = v != "0",
             "--energy-tol" => energy_tol = Some(v.parse().unwrap()),
+            "--clusters" => clusters = v != "0",
             other => panic!("unknown argument {other}"),
         }
     }
@@ -73,6 +76,7 @@ fn main() {
     opts.scheme.project = projection;
     opts.scheme.energy_consistent = consistent;
     opts.scheme.energy_tolerance = energy_tol;
+    opts.scheme.clusters = clusters;
     let t0 = Instant::now();
     let out = if automatic {
         let mut driver = SimulationOptions::default();
@@ -95,7 +99,7 @@ fn main() {
         DrumStop::Overturned { joint } | DrumStop::SlidOff { joint } => joint.to_string(),
         _ => "null".to_string(),
     };
-    println!(
+    let mut json = format!(
         "{{\"code\": \"rocking\", \"drums\": {n}, \"width\": {w}, \"height\": {h}, \"pga\": {pga}, \"mu\": {mu}, \"dt\": {dt}, \"t_end\": {:.6}, \"stop\": \"{:?}\", \"overturned\": {}, \"overturned_joint\": {joint}, \"peak_rotation\": {:.9e}, \"peak_rotations\": [{}], \"peak_top_displacement\": {:.9e}, \"residual_slip\": {:.9e}, \"residual_slips\": [{}], \"peak_slip\": {:.9e}, \"energy_error\": {:.3e}, \"energy\": {{\"ground_work\": {:.6e}, \"potential_change\": {:.6e}, \"kinetic_change\": {:.6e}, \"impact\": {:.6e}, \"friction\": {:.6e}, \"persistent_contact\": {:.6e}, \"projection\": {:.6e}}}, \"counters\": \"{:?}\", \"switches\": {}, \"switch_log\": \"{}\", \"time_event_driven\": {:.4}, \"wall_s\": {wall:.6}}}",
         out.t_end,
         out.stop,
@@ -123,4 +127,9 @@ fn main() {
             .join("; "),
         out.time_event_driven,
     );
+    if clusters {
+        json.pop();
+        json += &format!(", \"clusters\": \"{:?}\"}}", out.clusters);
+    }
+    println!("{json}");
 }

@@ -4,9 +4,24 @@
 //! kinetic-metric projection with friction, in stages over bumps for the thesis's consecutive
 //! impacts.
 
+use super::drums::JointGeometry;
 use super::friction::{JointContacts, JointStatus};
-use super::moreau::{EnergyAccounts, LocatedImpact, Saved, StepCounters, StepError, Stepper};
+use super::moreau::{EnergyAccounts, LocatedImpact, StepCounters, StepError, Stepper};
 use crate::ground::GroundMotion;
+
+/// The state a sub-step starts from, for a landing located after it (`save`, `restore`).
+#[derive(Clone, Debug)]
+pub(super) struct Saved {
+    pub(super) t: f64,
+    pub(super) q: Vec<f64>,
+    pub(super) v: Vec<f64>,
+    pub(super) statuses: Vec<JointStatus>,
+    pub(super) energy: EnergyAccounts,
+    pub(super) counters: StepCounters,
+    pub(super) joint_impulses: Vec<[f64; 2]>,
+    pub(super) carried: Vec<[bool; 2]>,
+    pub(super) geometry: Vec<JointGeometry>,
+}
 
 impl Stepper {
     /// Gaps and normal rates of every end at the start of a sub-step (for [`Self::missed_landing`]).

@@ -31,6 +31,7 @@ pub mod accounts;
 pub mod active_set;
 pub mod auto;
 mod blocks;
+pub mod clusters;
 pub mod consistent;
 pub mod drums;
 pub mod fallback;

@@ -84,6 +84,9 @@ pub struct SchemeOptions {
     /// and a slip that stops within a step is booked as friction. `false` (the default): the
     /// scheme as before.
     pub energy_consistent: bool,
+    /// Opt-in: condense the drums stuck together into rigid clusters for the step's problem,
+    /// checked and otherwise redone in full ([`super::clusters`]). `false`: the scheme as before.
+    pub clusters: bool,
 }
 
 impl Default for SchemeOptions {
@@ -97,6 +100,7 @@ impl Default for SchemeOptions {
             gravity: crate::model::column::GRAVITY,
             energy_tolerance: None,
             energy_consistent: false,
+            clusters: false,
         }
     }
 }
@@ -172,7 +176,7 @@ pub struct Stepper {
     pub(super) v_free: Vec<f64>,
     pub(super) q_next: Vec<f64>,
     pub(super) dq: Vec<f64>,
-    pub(super) saved: Option<Box<Saved>>,
+    pub(super) saved: Option<Box<super::landing::Saved>>,
     /// Contact tolerance on gaps (m).
     pub(super) contact_gap: f64,
     /// Projection tolerance on gaps (m).
@@ -216,19 +220,9 @@ pub struct Stepper {
     pub(super) touch_gap: f64,
     /// Set by the error control for its retries with `energy_consistent`: every landing located.
     pub(super) slow_landings: bool,
-}
-
-#[derive(Clone, Debug)]
-pub(super) struct Saved {
-    pub(super) t: f64,
-    pub(super) q: Vec<f64>,
-    pub(super) v: Vec<f64>,
-    pub(super) statuses: Vec<JointStatus>,
-    pub(super) energy: EnergyAccounts,
-    pub(super) counters: StepCounters,
-    pub(super) joint_impulses: Vec<[f64; 2]>,
-    pub(super) carried: Vec<[bool; 2]>,
-    pub(super) geometry: Vec<JointGeometry>,
+    pub(super) cluster_work: Option<Box<super::clusters::ClusterWork>>,
+    /// Condensed steps ([`SchemeOptions::clusters`]).
+    pub cluster_counters: super::clusters::ClusterCounters,
 }
 
 impl Stepper {
@@ -291,6 +285,10 @@ impl Stepper {
             impact_gap: 0.0,
             touch_gap: 1e-9 * size,
             slow_landings: false,
+            cluster_work: options
+                .clusters
+                .then(|| Box::new(super::clusters::ClusterWork::new(&masses, &inertias))),
+            cluster_counters: Default::default(),
             q,
             drums,
         };
@@ -445,6 +443,9 @@ impl Stepper {
         motion: &dyn GroundMotion,
         excluded: Option<&[[bool; 2]]>,
     ) -> Result<(), StepError> {
+        if self.options.clusters && self.condensed_substep(h, motion, excluded)? {
+            return Ok(());
+        }
         let n = self.drums.len();
         let theta = self.options.theta;
         let a = motion.acceleration(self.t + theta * h);

@@ -195,6 +195,8 @@ pub struct DrumOutcome {
     pub modes_end: Vec<JointMode>,
     /// Work counters.
     pub counters: StepCounters,
+    /// Counters of the condensed steps (`SchemeOptions::clusters`; zero otherwise).
+    pub clusters: super::clusters::ClusterCounters,
     /// The scheme switches of the automatic scheme ([`super::auto`]; empty otherwise).
     pub switches: Vec<SchemeSwitch>,
     /// Simulated time spent in the event-driven driver (s; 0 unless [`super::auto`]).

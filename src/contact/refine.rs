@@ -31,7 +31,8 @@
 //! them the events other than impacts, are read at the end of the grid step as without the
 //! control.
 
-use super::moreau::{LocatedImpact, Saved, StepError, Stepper};
+use super::landing::Saved;
+use super::moreau::{LocatedImpact, StepError, Stepper};
 use super::simulation::DrumEnergy;
 use crate::ground::GroundMotion;
 

@@ -132,6 +132,7 @@ impl MoreauRun {
             }),
             modes_end: Vec::new(),
             counters: StepCounters::default(),
+            clusters: Default::default(),
             switches: Vec::new(),
             time_event_driven: 0.0,
         };
@@ -328,6 +329,7 @@ impl MoreauRun {
         };
         out.modes_end = self.mode;
         out.counters = st.counters;
+        out.clusters = st.cluster_counters;
         self.out
     }
 }
