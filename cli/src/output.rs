@@ -6,8 +6,10 @@ use std::io::{BufWriter, Write};
 use std::path::Path;
 
 /// Checks, before a long run, that [`write_atomic`] will be able to write `path` (`flag`: the
-/// argument that named it): its folder can be created and written to, and it is not a folder
-/// itself. A run of hours whose `--csv` points into `/proc` or at a folder failed at its end.
+/// argument that named it): it is not a folder, no file stands where a folder of its path must
+/// be, and the nearest existing folder of its path can be written to. It creates and leaves
+/// nothing (a run refused afterwards must not leave an empty output folder). A run of hours
+/// whose `--csv` points into `/proc` or at a folder failed at its end.
 pub fn check_writable(flag: &str, path: &Path) -> Result<(), String> {
     if path.is_dir() {
         return Err(format!(
@@ -15,10 +17,43 @@ pub fn check_writable(flag: &str, path: &Path) -> Result<(), String> {
             path.display()
         ));
     }
-    let probe = path.with_file_name(format!(".rocking-probe-{}", std::process::id()));
-    write_atomic(&probe, b"").map_err(|e| format!("{flag}: {e}"))?;
+    let dir = path
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    if let Some(file) = file_in_the_way(dir) {
+        return Err(format!(
+            "{flag}: cannot create the folder {}: {} is a file, not a folder",
+            dir.display(),
+            file.display()
+        ));
+    }
+    let existing = dir
+        .ancestors()
+        .find(|p| p.as_os_str().is_empty() || p.is_dir())
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let probe = existing.join(format!(".rocking-probe-{}", std::process::id()));
+    std::fs::write(&probe, b"")
+        .map_err(|e| format!("{flag}: cannot write in {}: {e}", existing.display()))?;
     let _ = std::fs::remove_file(&probe);
     Ok(())
+}
+
+/// [`check_writable`] for the files `PREFIX-NAME` of a `--svg PREFIX` or `--csv PREFIX` (`name`:
+/// one of them; they share the folder).
+pub fn check_prefix_writable(flag: &str, prefix: &Path, name: &str) -> Result<(), String> {
+    check_writable(flag, &with_suffix(prefix, name))
+}
+
+/// The nearest existing ancestor of `dir` (itself included) when it is not a folder: the file
+/// that stops the folder from being created ("File exists", "Not a directory" said neither which
+/// path nor why).
+fn file_in_the_way(dir: &Path) -> Option<&Path> {
+    dir.ancestors()
+        .filter(|p| !p.as_os_str().is_empty())
+        .find(|p| p.exists())
+        .filter(|p| !p.is_dir())
 }
 
 /// Removes the `history.csv` and `events.jsonl` of an earlier run from `out` when this run
@@ -59,7 +94,14 @@ where
         .parent()
         .filter(|p| !p.as_os_str().is_empty())
         .unwrap_or(Path::new("."));
-    std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
+    std::fs::create_dir_all(dir).map_err(|e| match file_in_the_way(dir) {
+        Some(file) => format!(
+            "cannot create the folder {}: {} is a file, not a folder",
+            dir.display(),
+            file.display()
+        ),
+        None => format!("cannot create {}: {e}", dir.display()),
+    })?;
     let name = path
         .file_name()
         .ok_or_else(|| format!("{} is not a file path", path.display()))?;

@@ -10,7 +10,7 @@ use rocking::spectra::report::OasReport;
 use rocking::spectra::{self, Oas};
 
 use super::sweep::{OasGridArgs, Shard, SimulationArgs};
-use crate::output::{print_json, read_json};
+use crate::output::{check_prefix_writable, print_json, read_json};
 use crate::plot::{Chart, Scale, Series, Style, COLORS};
 use crate::progress;
 
@@ -69,6 +69,9 @@ pub struct OasArgs {
 
 /// Runs the command.
 pub fn run(a: &OasArgs) -> Result<(), String> {
+    if let Some(prefix) = &a.svg {
+        check_prefix_writable("--svg", prefix, "-oas.svg")?;
+    }
     if !a.overlay.is_empty() {
         return super::overlay::run(&a.overlay, a.svg.as_deref(), a.png);
     }

@@ -10,7 +10,7 @@ use rocking::spectra::report::OcReport;
 use rocking::spectra::{self, column_of_size, linear_levels, log_sizes, PulseShape, SweepOptions};
 
 use super::sweep::{count, grid_count, positive, Shard, SimulationArgs};
-use crate::output::print_json;
+use crate::output::{check_writable, print_json};
 use crate::plot::{Chart, Scale, Series, Style, COLORS};
 use crate::progress;
 
@@ -99,6 +99,9 @@ pub fn run(a: &OcArgs) -> Result<(), String> {
     let t_p: Vec<f64> = a.shard.keep(&ptp).iter().map(|x| x / mono_p).collect();
     let levels = linear_levels(1.0, a.level_max, a.level_n);
     let a_p: Vec<f64> = levels.iter().map(|l| l * mono_a_p_min).collect();
+    if let Some(path) = &a.svg {
+        check_writable("--svg", path)?;
+    }
     let bar = progress::bar(t_p.len() as u64, "OC");
     let tick = || bar.inc(1);
     let res = spectra::overturning_curve(&column, shape, &t_p, &a_p, &sweep, Some(&tick))

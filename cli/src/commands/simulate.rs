@@ -15,7 +15,7 @@ use clap::Args;
 use rocking::driver::{self, EventKind, Outcome, StopReason};
 use rocking::ground::FnMotion;
 
-use crate::output::{json_tree, write_atomic, write_atomic_with};
+use crate::output::{check_writable, json_tree, write_atomic, write_atomic_with};
 use crate::plot::{Chart, Marker, Series, Style, COLORS};
 use crate::progress;
 use rocking::scene::{self, Scene, Summary};
@@ -44,6 +44,11 @@ pub fn run(a: &SimulateArgs) -> Result<(), String> {
     };
     if plot.is_some() && !history {
         return Err("--plot needs the history (output.history must be true)".into());
+    }
+    // The folder and the chart before the run, which can be long (drums, records).
+    check_writable("--out", &out.join("summary.json"))?;
+    if let Some(p) = plot {
+        check_writable("--plot", p)?;
     }
     let scene = match any {
         scene::AnyScene::Column(scene) => scene,

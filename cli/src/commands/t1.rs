@@ -11,7 +11,7 @@ use rocking::spectra::{self, statistics};
 use serde::{Deserialize, Serialize};
 
 use super::sweep::{OasGridArgs, Procedure, Shard, SimulationArgs};
-use crate::output::{print_json, read_json};
+use crate::output::{check_prefix_writable, print_json, read_json};
 use crate::plot::{Chart, Series, Style, COLORS};
 use crate::progress;
 
@@ -152,6 +152,10 @@ pub fn run(a: &T1Args) -> Result<(), String> {
         let method = a.method();
         method.check().map_err(|e| e.to_string())?;
         let files = a.shard.keep(&a.records);
+        if let Some(prefix) = &a.svg {
+            check_prefix_writable("--svg", prefix, "-tp.svg")?;
+        }
+        let records = super::sweep::read_all(&files, &a.record_format)?;
         // A lower bound of the spectra when converging (more steps may be needed).
         let bar = progress::bar(
             (files.len() * o.levels.len() * method.min_spectra()) as u64,
@@ -159,9 +163,8 @@ pub fn run(a: &T1Args) -> Result<(), String> {
         );
         let procedure = (a.grid.procedure != Procedure::Converged).then(|| a.grid.procedure.name());
         let mut rows = Vec::new();
-        for f in files {
+        for (f, record) in records {
             bar.set_message(f.display().to_string());
-            let record = super::sweep::read(&f, &a.record_format)?;
             let t0 = Instant::now();
             let tick = || bar.inc(1);
             let result =
