@@ -165,3 +165,52 @@ fn an_output_path_through_a_file_is_refused_before_the_work() {
     assert!(out.stdout.is_empty(), "oc printed {}", out.stdout);
     assert!(out.stderr.contains("--svg") && out.stderr.contains("not a folder"));
 }
+
+/// The text of every `<text>` element of an SVG chart (titles, labels, ticks, legend).
+fn svg_texts(svg: &str) -> Vec<String> {
+    svg.split("<text")
+        .skip(1)
+        .filter_map(|t| {
+            let body = &t[t.find('>')? + 1..];
+            Some(body[..body.find("</text>")?].trim().to_string())
+        })
+        .collect()
+}
+
+/// `rocking oc --svg`: the p t_p axis spans the grid that was computed. It was fitted to the
+/// points that overturn, so a grid from p t_p = 0.1 whose shortest pulses overturn nothing was
+/// drawn from 0.2, as if it began there.
+#[test]
+fn the_oc_chart_spans_the_whole_grid() {
+    let dir = fresh_dir("oc_chart");
+    let svg = dir.join("oc.svg");
+    let out = common::run([
+        "oc",
+        "--size",
+        "6.02",
+        "--ptp-min",
+        "0.1",
+        "--ptp-max",
+        "10",
+        "--ptp-n",
+        "12",
+        "--level-n",
+        "12",
+        "--threads",
+        "1",
+        "--svg",
+        svg.to_str().unwrap(),
+    ]);
+    assert!(out.ok, "{}", out.stderr);
+    // The first pulse duration (p t_p = 0.1) overturns nothing at any level.
+    let first: Vec<&str> = out
+        .stdout
+        .lines()
+        .skip(1)
+        .filter(|l| l.split(',').nth(4).and_then(|x| x.parse::<f64>().ok()) < Some(0.11))
+        .collect();
+    assert!(!first.is_empty() && first.iter().all(|l| l.ends_with(",0")));
+    let texts = svg_texts(&std::fs::read_to_string(&svg).unwrap());
+    assert!(texts.iter().any(|t| t == "0.1"), "{texts:?}");
+    assert!(texts.iter().any(|t| t == "10"), "{texts:?}");
+}

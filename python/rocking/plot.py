@@ -138,6 +138,11 @@ def _oc_points(ax, result, flags, label):
     ax.plot(result.p_tp[rows], result.levels[cols], "o", markersize=3, label=label)
     ax.plot(result.p_tp, result.envelope, "-", label="envelope")
     ax.set_xscale("log")
+    # The whole computed grid, not only the points that overturn (a grid from p t_p = 0.1 whose
+    # shortest pulses overturned nothing was drawn from 0.2, as if it started there).
+    lo, hi = float(np.min(result.p_tp)), float(np.max(result.p_tp))
+    ax.set_xlim(lo / 1.1, hi * 1.1)
+    ax.set_ylim(0.0, float(np.max(result.levels)) * 1.03)
     return ax
 
 

@@ -353,6 +353,13 @@ fn run_oc(a: &ArchOcArgs) -> Result<(), String> {
                     .collect(),
             ),
             env,
+            super::oc::grid_extent(
+                &report
+                    .points
+                    .iter()
+                    .map(|q| (q.p_tp, q.level, ()))
+                    .collect::<Vec<_>>(),
+            ),
         )
         .write(path)?;
     }

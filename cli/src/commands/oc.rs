@@ -145,26 +145,46 @@ pub fn run(a: &OcArgs) -> Result<(), String> {
                 pts.iter().filter(|p| p.2).map(|p| (p.0, p.1)).collect(),
             ),
             env,
+            grid_extent(&pts),
         )
         .write(path)?;
     }
     Ok(())
 }
 
+/// The extent `((x_lo, x_hi), (y_lo, y_hi))` of a grid's points `(x, y, …)`.
+pub(super) fn grid_extent<T>(points: &[(f64, f64, T)]) -> ((f64, f64), (f64, f64)) {
+    let range = |values: &mut dyn Iterator<Item = f64>| {
+        values.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+            (lo.min(v), hi.max(v))
+        })
+    };
+    (
+        range(&mut points.iter().map(|p| p.0)),
+        range(&mut points.iter().map(|p| p.1)),
+    )
+}
+
 /// The chart of an overturning curve: the grid points that overturn (or collapse), `(name,
-/// points)`, and their lower envelope, against `p t_p` on a log axis.
+/// points)`, and their lower envelope, against `p t_p` on a log axis. The axes span the whole
+/// computed grid (`extent`, [`grid_extent`]), not only the points that overturn: a grid from
+/// p t_p = 0.1 whose shortest pulses overturned nothing was drawn from 0.2, as if it started
+/// there.
 pub(super) fn oc_chart(
     title: String,
     x_label: &str,
     y_label: &str,
     (name, points): (&str, Vec<(f64, f64)>),
     envelope: Vec<(f64, f64)>,
+    (x_extent, y_extent): ((f64, f64), (f64, f64)),
 ) -> Chart {
     Chart {
         title,
         x_label: x_label.into(),
         y_label: y_label.into(),
         x_scale: Scale::Log,
+        x_range: Some(x_extent),
+        y_range: Some((y_extent.0.min(0.0), y_extent.1)),
         series: vec![
             Series {
                 name: name.into(),
