@@ -214,3 +214,55 @@ fn the_oc_chart_spans_the_whole_grid() {
     assert!(texts.iter().any(|t| t == "0.1"), "{texts:?}");
     assert!(texts.iter().any(|t| t == "10"), "{texts:?}");
 }
+
+/// `rocking design`: the text report starts with the inputs as understood, the PGA also in g,
+/// so that a PGA typed in g where m/s² is expected shows (`--pga 0.14` is 0.014 g: a 0.13 m
+/// pier instead of 1.30 m, with nothing on screen to say so); `--pga 0.14g` takes the thesis's
+/// "a_g = 0.14 g" as written and gives the same answer as 1.3734 m/s².
+#[test]
+fn design_reports_its_inputs_and_takes_a_pga_in_g() {
+    let width = |pga: &str, json: bool| {
+        let mut args = vec![
+            "design", "width", "--height", "12", "--pga", pga, "--t1", "0.7",
+        ];
+        if json {
+            args.push("--json");
+        }
+        let out = common::run(&args);
+        assert!(out.ok, "{pga}: {}", out.stderr);
+        out.stdout
+    };
+    let text = width("0.14", false);
+    let first = text.lines().next().unwrap();
+    assert!(first.contains("a_p = 0.1400 m/s² (0.014 g)"), "{text}");
+    assert!(
+        first.contains("H = 12 m") && first.contains("t_1 = 0.7 s"),
+        "{text}"
+    );
+    let text = width("0.14g", false);
+    assert!(text.contains("a_p = 1.3734 m/s² (0.140 g)"), "{text}");
+    assert!(text.contains("required width B = 1.2985 m"), "{text}");
+    // The same width as the PGA in m/s² (0.14 × 9.81 rounds to 1.3734 within an ulp).
+    let json = |s: String| -> serde_json::Value { serde_json::from_str(&s).unwrap() };
+    let (in_g, in_ms2) = (json(width("0.14g", true)), json(width("1.3734", true)));
+    let w = |v: &serde_json::Value| v["width"].as_f64().unwrap();
+    assert!((w(&in_g) - w(&in_ms2)).abs() < 1e-12, "{in_g} {in_ms2}");
+    let check = common::run([
+        "design", "check", "--width", "1.3", "--height", "12", "--pga", "0.14g", "--t1", "0.7",
+    ]);
+    assert!(check.ok, "{}", check.stderr);
+    assert!(check
+        .stdout
+        .starts_with("pier B = 1.3 m, H = 12 m, uniform mass; a_p = 1.3734 m/s²"));
+    for bad in ["0g", "-0.1g", "3gal"] {
+        let out = common::run([
+            "design", "width", "--height", "12", "--pga", bad, "--t1", "0.7",
+        ]);
+        assert_eq!(out.code, Some(2), "{bad}: {}", out.stderr);
+        assert!(
+            out.stderr.contains("--pga") && out.stderr.contains("in g"),
+            "{}",
+            out.stderr
+        );
+    }
+}
