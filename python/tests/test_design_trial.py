@@ -1,0 +1,48 @@
+"""A structural engineer's trial of the design workflow through the package: files that cannot
+be read are named, and a list of records is read whole before the first spectrum."""
+import pytest
+
+import rocking
+
+
+@pytest.mark.parametrize(
+    "call",
+    [
+        lambda f: rocking.oas(f, levels=2, sizes=2),
+        lambda f: rocking.tp(f),
+        lambda f: rocking.read_record(f),
+        lambda f: rocking.simulate(f),
+        lambda f: rocking.t1(f, levels=2, sizes=2),
+    ],
+)
+def test_a_missing_file_is_named(call, tmp_path):
+    # FileNotFoundError said "No such file or directory (os error 2)", without the file.
+    missing = tmp_path / "FF-44.AT2"
+    with pytest.raises(FileNotFoundError) as e:
+        call(missing)
+    assert e.value.filename == str(missing)
+    assert e.value.errno == 2
+    assert "FF-44.AT2" in str(e.value)
+
+
+def test_a_folder_given_as_a_record_is_named(tmp_path):
+    with pytest.raises(IsADirectoryError) as e:
+        rocking.oas(tmp_path, levels=2, sizes=2)
+    assert e.value.filename == str(tmp_path)
+
+
+def test_t1_reads_every_record_before_the_first_spectrum(root, tmp_path):
+    # The spectra of the records before a missing one were computed first (seconds to minutes
+    # each) and then thrown away.
+    done = []
+    with pytest.raises(FileNotFoundError) as e:
+        rocking.t1(
+            [root / "examples/records/synthetic.AT2", tmp_path / "missing.AT2"],
+            levels=8,
+            sizes=24,
+            threads=1,
+            progress=lambda k, n: done.append(k),
+        )
+    assert e.value.filename == str(tmp_path / "missing.AT2")
+    assert done == []
+
