@@ -266,3 +266,20 @@ fn design_reports_its_inputs_and_takes_a_pga_in_g() {
         );
     }
 }
+
+/// `rocking suite --fractile 0.5,0.5`: refused before the spectra, naming the option. Every
+/// curve, row and CSV line of that fractile came out twice.
+#[test]
+fn a_fractile_given_twice_is_refused_before_the_spectra() {
+    let out = long_run(
+        &["suite", "examples/records/synthetic.AT2"],
+        &["--fractile", "0.5,0.84,0.5"],
+    );
+    assert_eq!(out.code, Some(1), "{}", out.stderr);
+    assert!(out.stdout.is_empty(), "{}", out.stdout);
+    assert!(
+        out.stderr.contains("--fractile") && out.stderr.contains("0.5 is given twice"),
+        "{}",
+        out.stderr
+    );
+}

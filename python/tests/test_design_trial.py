@@ -46,3 +46,10 @@ def test_t1_reads_every_record_before_the_first_spectrum(root, tmp_path):
     assert e.value.filename == str(tmp_path / "missing.AT2")
     assert done == []
 
+
+def test_a_fractile_given_twice_is_refused(root):
+    o = rocking.oas(root / "examples/records/synthetic.AT2", levels=4, sizes=6, threads=1)
+    for fractiles, says in [([0.5, 0.5], "0.5 is given twice"), ([], "at least one")]:
+        with pytest.raises(rocking.RockingError, match="fractile") as e:
+            rocking.suite([o], fractiles=fractiles)
+        assert says in str(e.value)

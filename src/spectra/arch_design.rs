@@ -124,6 +124,7 @@ pub fn arch_suite(
     fractiles: &[f64],
     name: &str,
 ) -> Result<Vec<ArchCharacteristic>, SpectraError> {
+    super::suite::distinct_fractiles(fractiles)?;
     let t1s: Vec<f64> = spectra.iter().filter_map(ArchOas::t1).collect();
     fractiles
         .iter()

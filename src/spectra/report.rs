@@ -236,6 +236,7 @@ impl SuiteReport {
         records: &[(Oas, f64)],
         fractiles: &[f64],
     ) -> Result<SuiteReport, SpectraError> {
+        super::suite::distinct_fractiles(fractiles)?;
         let mut records: Vec<&(Oas, f64)> = records.iter().collect();
         records.sort_by(|a, b| a.0.record.cmp(&b.0.record));
         let spectra: Vec<Oas> = records.iter().map(|r| r.0.clone()).collect();

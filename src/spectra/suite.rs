@@ -66,6 +66,22 @@ pub(super) fn valid_fractile(q: f64) -> Result<(), SpectraError> {
     Ok(())
 }
 
+/// The fractiles of a suite's report: at least one, each valid, none twice. "0.5,0.5" drew
+/// every curve of that fractile twice, printed its rows twice and wrote its CSV rows twice
+/// under one key.
+pub fn distinct_fractiles(fractiles: &[f64]) -> Result<(), SpectraError> {
+    if fractiles.is_empty() {
+        return Err(invalid("fractile", "at least one fractile is needed"));
+    }
+    for (k, &q) in fractiles.iter().enumerate() {
+        valid_fractile(q)?;
+        if fractiles[..k].contains(&q) {
+            return Err(invalid("fractile", format!("{q} is given twice")));
+        }
+    }
+    Ok(())
+}
+
 /// Whether two level lists are the same levels (the same values in the same order).
 pub(super) fn same_levels(a: &[OasLevel], b: &[OasLevel]) -> bool {
     a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x.level == y.level)
@@ -287,6 +303,35 @@ mod tests {
                 })
                 .collect::<Vec<_>>()
         );
+    }
+
+    /// "0.5,0.5" made a report with every curve, row and CSV line of 0.5 twice; an empty list a
+    /// report without any design t₁ (Python's `fractiles=[]`).
+    #[test]
+    fn a_suite_report_needs_distinct_fractiles() {
+        for (fractiles, says) in [
+            (vec![0.5, 0.5], "0.5 is given twice"),
+            (vec![0.84, 0.5, 0.84], "0.84 is given twice"),
+            (Vec::<f64>::new(), "at least one"),
+            (vec![0.5, 1.5], "(0, 1]"),
+        ] {
+            let e = distinct_fractiles(&fractiles)
+                .err()
+                .unwrap_or_else(|| panic!("{fractiles:?} accepted"));
+            assert!(e.to_string().starts_with("fractile"), "{e}");
+            assert!(e.to_string().contains(says), "{e}");
+        }
+        assert!(distinct_fractiles(&[0.84, 0.5]).is_ok());
+        // The suite report (CLI and Python) and the arch suite refuse them.
+        let a = oas("a", [None, Some(6), Some(5), Some(4)]);
+        #[cfg(feature = "serde")]
+        {
+            let spectra = [(a.clone(), 0.0)];
+            let report = |q: &[f64]| crate::spectra::report::SuiteReport::of("s", &spectra, q);
+            assert!(report(&[0.5, 0.5]).is_err());
+            assert_eq!(report(&[0.84, 0.5]).unwrap().characteristic.len(), 2);
+        }
+        let _ = a;
     }
 
     #[test]

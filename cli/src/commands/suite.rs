@@ -116,6 +116,8 @@ fn merged(files: &[PathBuf]) -> Result<Vec<(Oas, f64)>, String> {
 
 /// Runs the command.
 pub fn run(a: &SuiteArgs) -> Result<(), String> {
+    // Before the spectra: the report refuses them after.
+    spectra::suite::distinct_fractiles(&a.fractile).map_err(|e| format!("--{e}"))?;
     if let Some(prefix) = &a.csv {
         check_prefix_writable("--csv", prefix, "-records.csv")?;
     }
