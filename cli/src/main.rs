@@ -100,7 +100,27 @@ fn parse() -> Cli {
     Cli::from_arg_matches(&matches).unwrap_or_else(|e| e.exit())
 }
 
+/// A reader that closes the pipe early (`rocking oas R --csv | head -3`) ends the program as a
+/// broken pipe ends any Unix filter: quietly, with the status of SIGPIPE (141). `println!`
+/// panicked instead, "failed printing to stdout: Broken pipe", with a backtrace.
+fn quiet_on_broken_pipe() {
+    let default = std::panic::take_hook();
+    std::panic::set_hook(Box::new(move |info| {
+        let message = info
+            .payload()
+            .downcast_ref::<String>()
+            .map(String::as_str)
+            .or_else(|| info.payload().downcast_ref::<&str>().copied())
+            .unwrap_or("");
+        if message.starts_with("failed printing to stdout") && message.contains("Broken pipe") {
+            std::process::exit(141);
+        }
+        default(info);
+    }));
+}
+
 fn main() -> ExitCode {
+    quiet_on_broken_pipe();
     let cli = parse();
     let result = match &cli.command {
         Command::Thesis => return thesis::run(),

@@ -283,3 +283,31 @@ fn a_fractile_given_twice_is_refused_before_the_spectra() {
         out.stderr
     );
 }
+
+/// `rocking … | head`: a reader that closes the pipe early ends the program quietly with the
+/// status of SIGPIPE (141), as any Unix filter; it panicked, "failed printing to stdout:
+/// Broken pipe", with a backtrace on stderr.
+#[test]
+fn a_closed_pipe_ends_the_program_quietly() {
+    // About 200 kB of JSON: more than a pipe holds, so the writer meets the closed end.
+    let mut child = rocking()
+        .args([
+            "oc",
+            "--ptp-n",
+            "40",
+            "--level-n",
+            "40",
+            "--threads",
+            "1",
+            "--json",
+        ])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stdout.take());
+    let out = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(141), "{stderr}");
+    assert!(stderr.is_empty(), "{stderr}");
+}
