@@ -284,6 +284,52 @@ fn a_fractile_given_twice_is_refused_before_the_spectra() {
     );
 }
 
+/// β of Eq. 28–30 is a time (s): the t₁ table's header and the OAS charts' legends gave its
+/// value without the unit, beside t₁ [s] and t₁' [s].
+#[test]
+fn beta_is_given_with_its_unit() {
+    let dir = fresh_dir("beta");
+    let prefix = dir.join("syn");
+    let out = common::run([
+        "oas",
+        "examples/records/synthetic.AT2",
+        "--levels",
+        "16",
+        "--sizes",
+        "40",
+        "--threads",
+        "1",
+        "--svg",
+        prefix.to_str().unwrap(),
+    ]);
+    assert!(out.ok, "{}", out.stderr);
+    for chart in ["oas", "transformed", "size"] {
+        let svg = std::fs::read_to_string(dir.join(format!("syn-{chart}.svg"))).unwrap();
+        let legend: Vec<String> = svg_texts(&svg)
+            .into_iter()
+            .filter(|t| t.contains("beta"))
+            .collect();
+        assert!(!legend.is_empty(), "{chart}");
+        for t in legend {
+            assert!(t.ends_with(" s"), "{chart}: {t}");
+        }
+    }
+    let out = common::run([
+        "t1",
+        "examples/records/synthetic.AT2",
+        "--single-step",
+        "--levels",
+        "8",
+        "--sizes",
+        "24",
+        "--threads",
+        "1",
+    ]);
+    assert!(out.ok, "{}", out.stderr);
+    let header = out.stdout.lines().next().unwrap();
+    assert!(header.contains("beta [s]"), "{header}");
+}
+
 /// `rocking … | head`: a reader that closes the pipe early ends the program quietly with the
 /// status of SIGPIPE (141), as any Unix filter; it panicked, "failed printing to stdout:
 /// Broken pipe", with a backtrace on stderr.

@@ -107,7 +107,7 @@ def oas(result, against="p", ax=None, fits=True):
             ax.plot([f_min, f_min], [1.0, lmax], "--", label=f"f_min = i_cr / t1 (Eq. 20), t1 = {t1:.3f} s")
             if tp is not None and beta is not None:
                 lv = np.array([1.0, lmax])
-                ax.plot(lv / beta + 1.0 / tp, lv, "--", label=f"Eq. 28, t1' = {tp:.3f} s, beta = {beta:.2f}")
+                ax.plot(lv / beta + 1.0 / tp, lv, "--", label=f"Eq. 28, t1' = {tp:.3f} s, beta = {beta:.2f} s")
         else:
             if against == "p":
                 p = np.linspace(0.0, np.nanmax(x, initial=1.0) * 1.1, 401)[1:]
@@ -119,7 +119,7 @@ def oas(result, against="p", ax=None, fits=True):
             eq21, eq30 = _rocking._simplified_oas(p, t1, result.i_cr, tp, beta)
             ax.plot(xs, eq21, "--", label=f"Eq. 21, t1 = {t1:.3f} s")
             if eq30 is not None:
-                ax.plot(xs, eq30, "--", label=f"Eq. 30, t1' = {tp:.3f} s, beta = {beta:.2f}")
+                ax.plot(xs, eq30, "--", label=f"Eq. 30, t1' = {tp:.3f} s, beta = {beta:.2f} s")
     ax.set_xlabel({"p": "p [1/s]", "f": "f = p a_p / a_p,min [1/s]", "size": "size R [m] (half diagonal)"}[against])
     if against == "size":
         ax.set_xscale("log")

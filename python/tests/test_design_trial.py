@@ -53,3 +53,17 @@ def test_a_fractile_given_twice_is_refused(root):
         with pytest.raises(rocking.RockingError, match="fractile") as e:
             rocking.suite([o], fractiles=fractiles)
         assert says in str(e.value)
+
+
+def test_beta_is_labelled_with_its_unit(root):
+    mpl = pytest.importorskip("matplotlib")
+    mpl.use("Agg")
+    import matplotlib.pyplot as plt
+
+    o = rocking.oas(root / "examples/records/synthetic.AT2", levels=16, sizes=40, threads=1)
+    for against in ["p", "f", "size"]:
+        _, ax = plt.subplots()
+        o.plot(against=against, ax=ax)
+        labels = [l.get_label() for l in ax.get_lines() if "beta" in l.get_label()]
+        assert labels and all(l.endswith(" s") for l in labels), labels
+    plt.close("all")

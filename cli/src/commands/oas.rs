@@ -190,7 +190,7 @@ fn charts(o: &Oas) -> Vec<(&'static str, Chart)> {
         if let Some(fit) = s.fit {
             let eq30 = |p: f64| rocking::design::improved_oas_eq30(p, t1, fit.t1_prime, fit.beta);
             let name = format!(
-                "Eq. 30, t1' = {:.3} s, beta = {:.2}",
+                "Eq. 30, t1' = {:.3} s, beta = {:.2} s",
                 fit.t1_prime, fit.beta
             );
             let curve = |points: Vec<(f64, f64)>| Series {
@@ -207,7 +207,7 @@ fn charts(o: &Oas) -> Vec<(&'static str, Chart)> {
             ));
             by_f.push(Series {
                 name: format!(
-                    "Eq. 28, t1' = {:.3} s, beta = {:.2}",
+                    "Eq. 28, t1' = {:.3} s, beta = {:.2} s",
                     fit.t1_prime, fit.beta
                 ),
                 points: vec![

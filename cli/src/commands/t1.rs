@@ -235,7 +235,7 @@ pub fn run(a: &T1Args) -> Result<(), String> {
     if a.json {
         print_json(&rows)?;
     } else {
-        println!("record                          t1 [s]   t1' [s]  beta     f_min [1/s] t_p [s]");
+        println!("record                          t1 [s]   t1' [s]  beta [s] f_min [1/s] t_p [s]");
         for r in &rows {
             let s = &r.summary;
             let f = |v: Option<f64>| {
