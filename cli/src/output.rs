@@ -150,6 +150,37 @@ pub fn read_json<T: serde::de::DeserializeOwned>(path: &Path) -> Result<T, Strin
     serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))
 }
 
+/// [`read_json`] of a report that a command joins (`--merge`, `--overlay`): a file that reads
+/// as JSON but is not that report says what was expected (`what`) before serde's detail. "invalid
+/// type: map, expected a sequence at line 1 column 0" (an OAS report given to `t1 --merge`)
+/// named neither the report expected nor the one given.
+pub fn read_report<T: serde::de::DeserializeOwned>(path: &Path, what: &str) -> Result<T, String> {
+    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    serde_json::from_str(&text).map_err(|e| {
+        let given =
+            serde_json::from_str::<serde_json::Value>(&text).map_or("not JSON", |v| json_kind(&v));
+        format!("{}: {what} expected, {given} ({e})", path.display())
+    })
+}
+
+/// What a JSON file most likely is, among the files the commands write.
+fn json_kind(v: &serde_json::Value) -> &'static str {
+    let has = |key: &str| v.get(key).is_some();
+    if v.is_array() {
+        "this is a list (the output of `rocking t1 --json`?)"
+    } else if has("characteristic") {
+        "this is a `rocking suite --json` report"
+    } else if has("levels") && has("sizes") {
+        "this is an OAS report (`rocking oas --json`)"
+    } else if has("stop_reason") {
+        "this is the summary.json of `rocking simulate`"
+    } else if has("blocks") || has("excitation") {
+        "this is a scene"
+    } else {
+        "this is other JSON"
+    }
+}
+
 /// `prefix` followed by `suffix`: `with_suffix("out/ff", "-oas.svg")` is `out/ff-oas.svg` (a
 /// prefix is a path and a file-name stem, not a folder).
 pub fn with_suffix(prefix: &Path, suffix: &str) -> std::path::PathBuf {

@@ -357,3 +357,57 @@ fn a_closed_pipe_ends_the_program_quietly() {
     assert_eq!(out.status.code(), Some(141), "{stderr}");
     assert!(stderr.is_empty(), "{stderr}");
 }
+
+/// A report joined by the wrong command (`t1 --merge` of an OAS, `oas --merge` of a t₁ list or
+/// of a simulation's summary): the error says which report was expected and which was given.
+/// It was serde's "invalid type: map, expected a sequence at line 1 column 0".
+#[test]
+fn a_report_merged_by_the_wrong_command_is_named() {
+    let dir = fresh_dir("merge");
+    let run_json = |args: &[&str], name: &str| {
+        let out = common::run(args);
+        assert!(out.ok, "{args:?}: {}", out.stderr);
+        let path = dir.join(name);
+        std::fs::write(&path, out.stdout).unwrap();
+        path.to_str().unwrap().to_string()
+    };
+    let record = "examples/records/synthetic.AT2";
+    let grid = ["--levels", "4", "--sizes", "6", "--threads", "1"];
+    let oas = run_json(&[&["oas", record][..], &grid].concat(), "oas.json");
+    let t1 = run_json(
+        &[&["t1", record, "--single-step", "--json"][..], &grid].concat(),
+        "t1.json",
+    );
+    for (args, expected, given) in [
+        (
+            vec!["t1", "--merge", oas.as_str()],
+            "`rocking t1 --json`",
+            "an OAS report",
+        ),
+        (
+            vec!["oas", "--merge", t1.as_str()],
+            "an OAS report",
+            "a list",
+        ),
+        (
+            vec!["oas", "--overlay", t1.as_str()],
+            "an OAS report",
+            "a list",
+        ),
+        (
+            vec![
+                "t1",
+                "--merge",
+                "examples/scenes/single_block_half_sine.json",
+            ],
+            "`rocking t1 --json`",
+            "a scene",
+        ),
+    ] {
+        let out = common::run(&args);
+        assert_eq!(out.code, Some(1), "{args:?}: {}", out.stderr);
+        let e = &out.stderr;
+        assert!(e.contains(expected) && e.contains(" expected, "), "{e}");
+        assert!(e.contains(&format!("this is {given}")), "{e}");
+    }
+}

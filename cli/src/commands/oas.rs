@@ -10,7 +10,7 @@ use rocking::spectra::report::OasReport;
 use rocking::spectra::{self, Oas};
 
 use super::sweep::{OasGridArgs, Shard, SimulationArgs};
-use crate::output::{check_prefix_writable, print_json, read_json};
+use crate::output::{check_prefix_writable, print_json, read_report};
 use crate::plot::{Chart, Scale, Series, Style, COLORS};
 use crate::progress;
 
@@ -82,7 +82,7 @@ pub fn run(a: &OasArgs) -> Result<(), String> {
             let parts: Vec<OasReport> = a
                 .merge
                 .iter()
-                .map(|p| read_json(p))
+                .map(|p| read_report(p, "an OAS report (`rocking oas --json`, whole or --shard)"))
                 .collect::<Result<_, _>>()?;
             spectra::T1Result {
                 oas: OasReport::merge(parts).ok_or("nothing to merge")?,

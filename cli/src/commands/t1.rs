@@ -11,7 +11,7 @@ use rocking::spectra::{self, statistics};
 use serde::{Deserialize, Serialize};
 
 use super::sweep::{OasGridArgs, Procedure, Shard, SimulationArgs};
-use crate::output::{check_prefix_writable, print_json, read_json};
+use crate::output::{check_prefix_writable, print_json, read_report};
 use crate::plot::{Chart, Series, Style, COLORS};
 use crate::progress;
 
@@ -192,7 +192,10 @@ pub fn run(a: &T1Args) -> Result<(), String> {
     } else {
         let mut rows = Vec::new();
         for p in &a.merge {
-            rows.extend(read_json::<Vec<Row>>(p)?);
+            rows.extend(read_report::<Vec<Row>>(
+                p,
+                "the list of `rocking t1 --json` (whole or --shard)",
+            )?);
         }
         // Rows written before t_p was part of the output: t_p from the record, when readable.
         for r in rows.iter_mut().filter(|r| r.t_p.is_none()) {
