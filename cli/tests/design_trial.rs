@@ -411,3 +411,40 @@ fn a_report_merged_by_the_wrong_command_is_named() {
         assert!(e.contains(&format!("this is {given}")), "{e}");
     }
 }
+
+/// `rocking oc --help` said `--slenderness` was the "H/B of each block", but the column of
+/// `--blocks n` is n blocks of the one monolith's H/B cut in n (a_p,min = g B/H of the whole
+/// column): a 3-drum column of H/B-4 drums entered as told was a column of H/B 4, drums of 1.33.
+#[test]
+fn the_oc_slenderness_is_said_to_be_the_columns() {
+    let help = common::run(["oc", "--help"]).stdout;
+    let line = help
+        .lines()
+        .skip_while(|l| !l.contains("--slenderness"))
+        .take(3)
+        .collect::<Vec<_>>()
+        .join(" ");
+    assert!(!line.contains("of each block"), "{line}");
+    assert!(line.contains("whole column"), "{line}");
+    // What it does: the column's a_p,min is g / slenderness whatever the number of blocks.
+    for blocks in ["1", "3"] {
+        let out = common::run([
+            "oc",
+            "--blocks",
+            blocks,
+            "--slenderness",
+            "12",
+            "--ptp-n",
+            "1",
+            "--level-n",
+            "1",
+            "--json",
+        ]);
+        assert!(out.ok, "{}", out.stderr);
+        let v: serde_json::Value = serde_json::from_str(&out.stdout).unwrap();
+        assert!(
+            (v["a_p_min"].as_f64().unwrap() - 9.81 / 12.0).abs() < 1e-12,
+            "{v}"
+        );
+    }
+}

@@ -47,7 +47,8 @@ pub struct OcArgs {
     /// Equal blocks in the column.
     #[arg(long, default_value_t = 1, value_parser = count)]
     pub blocks: usize,
-    /// H/B of each block.
+    /// H/B of the whole column (the equivalent monolith, as `rocking oas --slenderness`): each
+    /// of the --blocks equal blocks is H/n high and B wide, i.e. of H/B = slenderness / n.
     #[arg(long, default_value_t = 12.0, value_parser = positive)]
     pub slenderness: f64,
     /// Size R of the column (half diagonal of the equivalent monolith) [m].
