@@ -448,3 +448,37 @@ fn the_oc_slenderness_is_said_to_be_the_columns() {
         );
     }
 }
+
+/// `simulate --plot` of a column that rocks as one (thesis 4.3's three blocks): one line for
+/// the blocks with the same rotation throughout, its legend saying which; three coincident
+/// lines showed only the last while the legend listed blocks 0, 1 and 2. Blocks that part keep
+/// their own lines (the stone column under the record: its joints open).
+#[test]
+fn blocks_rocking_as_one_are_one_line_in_the_plot() {
+    let dir = fresh_dir("plot_as_one");
+    for (scene, entries) in [
+        ("three_block_sine_pulse", vec!["blocks 0, 1, 2 (as one)"]),
+        (
+            "column_synthetic_record",
+            vec!["block 0", "block 1", "block 2"],
+        ),
+    ] {
+        let svg = dir.join(format!("{scene}.svg"));
+        let out = common::run([
+            "simulate",
+            &format!("examples/scenes/{scene}.json"),
+            "--out",
+            dir.join(scene).to_str().unwrap(),
+            "--plot",
+            svg.to_str().unwrap(),
+        ]);
+        assert!(out.ok, "{}", out.stderr);
+        let texts = svg_texts(&std::fs::read_to_string(&svg).unwrap());
+        let blocks: Vec<&str> = texts
+            .iter()
+            .map(String::as_str)
+            .filter(|t| t.starts_with("block") && !t.starts_with("block rotation"))
+            .collect();
+        assert_eq!(blocks, entries, "{scene}");
+    }
+}

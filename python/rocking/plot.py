@@ -51,8 +51,19 @@ def simulation(result, ax=None, events=True):
     """Block rotations (rad) of a :class:`rocking.Simulation` against time, one line per block,
     and a vertical line at each event (``events``)."""
     ax = _axes(ax)
+    # Blocks with the same rotation throughout (a column rocking as one) are one line with one
+    # legend entry: drawn one over the other, all but the last were hidden behind it.
+    groups = []
     for k in range(result.block_rotations.shape[1]):
-        ax.plot(result.t, result.block_rotations[:, k], label=f"block {k}")
+        column = result.block_rotations[:, k]
+        same = [g for g in groups if np.array_equal(result.block_rotations[:, g[0]], column)]
+        if same:
+            same[0].append(k)
+        else:
+            groups.append([k])
+    for g in groups:
+        label = f"block {g[0]}" if len(g) == 1 else f"blocks {', '.join(map(str, g))} (as one)"
+        ax.plot(result.t, result.block_rotations[:, g[0]], label=label)
     if events:
         _event_lines(ax, result.events)
     ax.set_xlabel("t [s]")

@@ -67,3 +67,19 @@ def test_beta_is_labelled_with_its_unit(root):
         labels = [l.get_label() for l in ax.get_lines() if "beta" in l.get_label()]
         assert labels and all(l.endswith(" s") for l in labels), labels
     plt.close("all")
+
+
+def test_blocks_rocking_as_one_are_one_line(root):
+    mpl = pytest.importorskip("matplotlib")
+    mpl.use("Agg")
+    import matplotlib.pyplot as plt
+
+    for scene, labels in [
+        ("three_block_sine_pulse", ["blocks 0, 1, 2 (as one)"]),
+        ("column_synthetic_record", ["block 0", "block 1", "block 2"]),
+    ]:
+        r = rocking.simulate(root / f"examples/scenes/{scene}.json")
+        _, ax = plt.subplots()
+        rocking.plot.simulation(r, ax=ax, events=False)
+        assert [l.get_label() for l in ax.get_lines()] == labels, scene
+    plt.close("all")
