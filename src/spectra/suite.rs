@@ -66,6 +66,17 @@ pub(super) fn valid_fractile(q: f64) -> Result<(), SpectraError> {
     Ok(())
 }
 
+/// The `q`-fractile of the records' own `t₁` (`None` for a record that overturns no size at
+/// any level of the grid): such a record ranks lowest, as the shortest replacement duration
+/// (Eq. 21 with `t₁ → 0` calls every block safe), and a fractile that falls on it is `None`.
+/// Leaving such records out gave the median of the others: of two records, one overturning
+/// nothing, the "0.5-fractile of the records' t₁" was the other's t₁ while the design t₁ of
+/// the 0.5 characteristic OAS was none.
+pub fn record_t1_fractile(t1s: impl Iterator<Item = Option<f64>>, q: f64) -> Option<f64> {
+    let t1s: Vec<f64> = t1s.map(|t| t.unwrap_or(0.0)).collect();
+    super::statistics::fractile(&t1s, q).filter(|&t| t > 0.0)
+}
+
 /// The fractiles of a suite's report: at least one, each valid, none twice. "0.5,0.5" drew
 /// every curve of that fractile twice, printed its rows twice and wrote its CSV rows twice
 /// under one key.
@@ -332,6 +343,33 @@ mod tests {
             assert_eq!(report(&[0.84, 0.5]).unwrap().characteristic.len(), 2);
         }
         let _ = a;
+    }
+
+    #[test]
+    fn a_record_that_overturns_nothing_ranks_lowest_among_the_records_t1() {
+        let t = |v: &[Option<f64>], q| record_t1_fractile(v.iter().copied(), q);
+        assert_eq!(t(&[None, Some(0.2)], 0.5), None);
+        assert_eq!(t(&[None, Some(0.2)], 1.0), Some(0.2));
+        assert_eq!(t(&[Some(0.3), None, Some(0.2)], 0.5), Some(0.2));
+        assert_eq!(t(&[Some(0.3), Some(0.2)], 0.5), Some(0.2));
+        assert_eq!(t(&[None], 0.84), None);
+        // In the suite report: the 0.5 characteristic OAS of these two has no unsafe level,
+        // and the records' t1 fractile agrees.
+        #[cfg(feature = "serde")]
+        {
+            let safe = oas("safe", [None, None, None, None]);
+            let b = oas("b", [None, Some(6), Some(5), Some(4)]);
+            let r = crate::spectra::report::SuiteReport::of(
+                "s",
+                &[(safe, 0.0), (b.clone(), 0.0)],
+                &[0.5, 1.0],
+            )
+            .unwrap();
+            assert_eq!(r.characteristic[0].design_t1, None);
+            assert_eq!(r.characteristic[0].record_t1_fractile, None);
+            assert_eq!(r.characteristic[1].record_t1_fractile, b.t1());
+            assert!(b.t1().is_some());
+        }
     }
 
     #[test]
