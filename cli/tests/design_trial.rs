@@ -152,6 +152,17 @@ fn an_output_path_through_a_file_is_refused_before_the_work() {
         // Nothing of the run was written.
         assert!(!out_dir.join("summary.json").exists());
     }
+    // The arch spectra (their default grids take minutes).
+    for args in [
+        vec!["arch", "oas", record, "--svg", svg.as_str()],
+        vec!["arch", "oc", "--svg", plot.as_str()],
+    ] {
+        let out = run_within(&args, Duration::from_secs(30))
+            .unwrap_or_else(|| panic!("{args:?} computed instead of refusing"));
+        assert_eq!(out.code, Some(1), "{args:?}: {}", out.stderr);
+        assert!(out.stdout.is_empty(), "{args:?} printed {}", out.stdout);
+        assert!(out.stderr.contains("--svg") && out.stderr.contains("not a folder"));
+    }
     let out = common::run([
         "oc",
         "--ptp-n",
