@@ -493,3 +493,31 @@ fn blocks_rocking_as_one_are_one_line_in_the_plot() {
         assert_eq!(blocks, entries, "{scene}");
     }
 }
+
+/// `rocking design`: Eq. 31 is a rocking check, and the report says what it takes, a friction
+/// coefficient of at least tan δ, and warns for a squat pier (tan δ ≥ 1), which was called SAFE
+/// (`--width 20 --height 12`: a_p,min = 16.35 m/s²) with nothing to say it would slide first.
+#[test]
+fn the_design_report_states_the_no_sliding_premise() {
+    let check = |width: &str| {
+        let out = common::run([
+            "design", "check", "--width", width, "--height", "12", "--pga", "1.37", "--t1", "0.7",
+        ]);
+        assert!(out.ok, "{}", out.stderr);
+        out.stdout
+    };
+    let slender = check("1.3");
+    assert!(slender.contains("friction μ ≥ tan δ = 0.108"), "{slender}");
+    assert!(!slender.contains("squat"), "{slender}");
+    let squat = check("20");
+    assert!(squat.contains("friction μ ≥ tan δ = 1.667"), "{squat}");
+    assert!(
+        squat.contains("squat") && squat.contains("check sliding"),
+        "{squat}"
+    );
+    let width = common::run([
+        "design", "width", "--height", "12", "--pga", "0.14g", "--t1", "0.7", "--mass", "top",
+    ]);
+    // Mass at the top: tan δ = (B/2) / H for the required B = 2.1224 m.
+    assert!(width.stdout.contains("tan δ = 0.088"), "{}", width.stdout);
+}

@@ -212,8 +212,24 @@ fn width(a: &WidthArgs) -> Result<(), String> {
         println!("  Eq. 21 with i_cr of Eq. 18    {:.4} m", w.eq21_exact_icr);
         println!("  Eq. 24 (slender approx.)      {:.4} m", w.eq24);
         println!("  at rest (a_p = a_p,min)       {:.4} m", w.at_rest);
+        let pier = EquivalentBlock::new(w.required, l.height, l.mass.distribution())
+            .map_err(|e| e.to_string())?;
+        println!("{}", sliding_note(pier.tan_delta()));
     }
     Ok(())
+}
+
+/// The premise of Eq. 31, said with the numbers: the pier rocks, it does not slide, which
+/// takes a friction coefficient of at least tan δ (rocking starts at a_p,min = g tan δ, sliding
+/// at μ g). A squat pier (`--width 20 --height 12`, tan δ = 1.67) was called SAFE with nothing
+/// to say that it only rocks with a friction coefficient above 1.67.
+fn sliding_note(tan_delta: f64) -> String {
+    let squat = if tan_delta >= 1.0 {
+        " (a pier this squat, tan δ ≥ 1, will most likely slide before it rocks: check sliding)"
+    } else {
+        ""
+    };
+    format!("  Eq. 31 assumes rocking without sliding: friction μ ≥ tan δ = {tan_delta:.3}{squat}")
 }
 
 fn check(a: &CheckArgs) -> Result<(), String> {
@@ -247,6 +263,7 @@ fn check(a: &CheckArgs) -> Result<(), String> {
             c.impulse_limit,
             branch(c.governing)
         );
+        println!("{}", sliding_note(pier.tan_delta()));
     }
     Ok(())
 }
