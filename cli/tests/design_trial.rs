@@ -521,3 +521,36 @@ fn the_design_report_states_the_no_sliding_premise() {
     // Mass at the top: tan δ = (B/2) / H for the required B = 2.1224 m.
     assert!(width.stdout.contains("tan δ = 0.088"), "{}", width.stdout);
 }
+
+/// A suite with a record that overturns no size on the grid (a weak record, a coarse grid): the
+/// text says so beside the records' t₁ range, and the fractile of the records' t₁ counts it as
+/// the lowest (here the 0.5 fractile falls on it: none, as the 0.5 design t₁). The range was
+/// the other records' without a word, and the 0.5 fractile was the other record's t₁.
+#[test]
+fn a_record_that_overturns_nothing_is_counted_in_the_suite() {
+    let dir = fresh_dir("weak");
+    let weak = dir.join("weak.txt");
+    std::fs::write(&weak, "0 0\n0.01 1\n0.02 -1\n0.03 0\n").unwrap();
+    let out = common::run([
+        "suite",
+        weak.to_str().unwrap(),
+        "examples/records/synthetic.AT2",
+        "--levels",
+        "4",
+        "--sizes",
+        "6",
+        "--threads",
+        "1",
+    ]);
+    assert!(out.ok, "{}", out.stderr);
+    let mut lines = out.stdout.lines();
+    let head = lines.next().unwrap();
+    assert!(
+        head.contains("2 records") && head.contains("1 record overturns no size"),
+        "{head}"
+    );
+    let median = lines.find(|l| l.starts_with("0.5 ")).unwrap();
+    let cells: Vec<&str> = median.split_whitespace().collect();
+    assert_eq!(cells[1], "-", "{median}"); // design t1
+    assert_eq!(cells.last(), Some(&"-"), "{median}"); // fractile of the records' t1
+}

@@ -189,8 +189,16 @@ fn range(v: &Violations) -> String {
 fn summary(r: &SuiteReport) -> String {
     let mut s = String::new();
     let t1s: Vec<f64> = r.records.iter().filter_map(|o| o.summary.t1).collect();
+    // Records that overturn no size at any level have no t1: said, not left out of the range
+    // unmentioned (the range of the others read as the suite's).
+    let none = r.records.len() - t1s.len();
+    let without = match none {
+        0 => String::new(),
+        1 => " (1 record overturns no size on the grid: no t1)".into(),
+        n => format!(" ({n} records overturn no size on the grid: no t1)"),
+    };
     s += &format!(
-        "suite {}: {} records, t1 of the records {}…{} s, {:.1} s of OAS\n",
+        "suite {}: {} records, t1 of the records {}…{} s{without}, {:.1} s of OAS\n",
         r.name,
         r.records.len(),
         num(t1s.iter().copied().reduce(f64::min)),
