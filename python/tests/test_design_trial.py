@@ -83,3 +83,17 @@ def test_blocks_rocking_as_one_are_one_line(root):
         rocking.plot.simulation(r, ax=ax, events=False)
         assert [l.get_label() for l in ax.get_lines()] == labels, scene
     plt.close("all")
+
+
+def test_empty_design_arrays_keep_their_types():
+    # `governing` of empty inputs came back as a float64 array; `safe` was already bool.
+    for r in [
+        rocking.design_width(height=[], pga=3.0, t1=0.25),
+        rocking.design_check(width=[], height=[], pga=3.0, t1=0.25),
+    ]:
+        assert r["governing"].shape == (0,)
+        assert r["governing"].dtype.kind == "U"
+    c = rocking.design_check(width=[], height=[], pga=3.0, t1=0.25)
+    assert c["safe"].dtype == bool
+    w = rocking.design_width(height=[10.0, 20.0], pga=3.0, t1=0.25)
+    assert list(w["governing"]) == ["impulse", "impulse"]
