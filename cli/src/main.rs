@@ -6,7 +6,7 @@
 
 use std::process::ExitCode;
 
-use clap::{Parser, Subcommand};
+use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
 
 mod bench;
 mod commands;
@@ -79,8 +79,49 @@ enum Command {
     Bench(bench::Bench),
 }
 
+/// `cmd` and its subcommands with every option that takes a value accepting a negative number
+/// as that value (`--pga -1`, `--size -2`), so that its own check refuses it naming the option
+/// and the rule ("must be finite and > 0, got -1"). clap's default read `-1` as an unknown
+/// flag: "unexpected argument '-1' found", which names neither.
+fn negative_values_reach_their_checks(cmd: clap::Command) -> clap::Command {
+    cmd.mut_args(|arg| {
+        if arg.get_action().takes_values() {
+            arg.allow_negative_numbers(true)
+        } else {
+            arg
+        }
+    })
+    .mut_subcommands(negative_values_reach_their_checks)
+}
+
+/// The command line, parsed as [`Cli::parse`] with [`negative_values_reach_their_checks`].
+fn parse() -> Cli {
+    let matches = negative_values_reach_their_checks(Cli::command()).get_matches();
+    Cli::from_arg_matches(&matches).unwrap_or_else(|e| e.exit())
+}
+
+/// A reader that closes the pipe early (`rocking oas R --csv | head -3`) ends the program as a
+/// broken pipe ends any Unix filter: quietly, with the status of SIGPIPE (141). `println!`
+/// panicked instead, "failed printing to stdout: Broken pipe", with a backtrace.
+fn quiet_on_broken_pipe() {
+    let default = std::panic::take_hook();
+    std::panic::set_hook(Box::new(move |info| {
+        let message = info
+            .payload()
+            .downcast_ref::<String>()
+            .map(String::as_str)
+            .or_else(|| info.payload().downcast_ref::<&str>().copied())
+            .unwrap_or("");
+        if message.starts_with("failed printing to stdout") && message.contains("Broken pipe") {
+            std::process::exit(141);
+        }
+        default(info);
+    }));
+}
+
 fn main() -> ExitCode {
-    let cli = Cli::parse();
+    quiet_on_broken_pipe();
+    let cli = parse();
     let result = match &cli.command {
         Command::Thesis => return thesis::run(),
         Command::Simulate(a) => simulate::run(a),
@@ -105,10 +146,10 @@ fn main() -> ExitCode {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use clap::CommandFactory;
 
     #[test]
     fn the_arguments_are_consistent() {
         Cli::command().debug_assert();
+        negative_values_reach_their_checks(Cli::command()).debug_assert();
     }
 }

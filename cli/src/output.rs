@@ -6,8 +6,10 @@ use std::io::{BufWriter, Write};
 use std::path::Path;
 
 /// Checks, before a long run, that [`write_atomic`] will be able to write `path` (`flag`: the
-/// argument that named it): its folder can be created and written to, and it is not a folder
-/// itself. A run of hours whose `--csv` points into `/proc` or at a folder failed at its end.
+/// argument that named it): it is not a folder, no file stands where a folder of its path must
+/// be, and the nearest existing folder of its path can be written to. It creates and leaves
+/// nothing (a run refused afterwards must not leave an empty output folder). A run of hours
+/// whose `--csv` points into `/proc` or at a folder failed at its end.
 pub fn check_writable(flag: &str, path: &Path) -> Result<(), String> {
     if path.is_dir() {
         return Err(format!(
@@ -15,10 +17,43 @@ pub fn check_writable(flag: &str, path: &Path) -> Result<(), String> {
             path.display()
         ));
     }
-    let probe = path.with_file_name(format!(".rocking-probe-{}", std::process::id()));
-    write_atomic(&probe, b"").map_err(|e| format!("{flag}: {e}"))?;
+    let dir = path
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    if let Some(file) = file_in_the_way(dir) {
+        return Err(format!(
+            "{flag}: cannot create the folder {}: {} is a file, not a folder",
+            dir.display(),
+            file.display()
+        ));
+    }
+    let existing = dir
+        .ancestors()
+        .find(|p| p.as_os_str().is_empty() || p.is_dir())
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let probe = existing.join(format!(".rocking-probe-{}", std::process::id()));
+    std::fs::write(&probe, b"")
+        .map_err(|e| format!("{flag}: cannot write in {}: {e}", existing.display()))?;
     let _ = std::fs::remove_file(&probe);
     Ok(())
+}
+
+/// [`check_writable`] for the files `PREFIX-NAME` of a `--svg PREFIX` or `--csv PREFIX` (`name`:
+/// one of them; they share the folder).
+pub fn check_prefix_writable(flag: &str, prefix: &Path, name: &str) -> Result<(), String> {
+    check_writable(flag, &with_suffix(prefix, name))
+}
+
+/// The nearest existing ancestor of `dir` (itself included) when it is not a folder: the file
+/// that stops the folder from being created ("File exists", "Not a directory" said neither which
+/// path nor why).
+fn file_in_the_way(dir: &Path) -> Option<&Path> {
+    dir.ancestors()
+        .filter(|p| !p.as_os_str().is_empty())
+        .find(|p| p.exists())
+        .filter(|p| !p.is_dir())
 }
 
 /// Removes the `history.csv` and `events.jsonl` of an earlier run from `out` when this run
@@ -59,7 +94,14 @@ where
         .parent()
         .filter(|p| !p.as_os_str().is_empty())
         .unwrap_or(Path::new("."));
-    std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
+    std::fs::create_dir_all(dir).map_err(|e| match file_in_the_way(dir) {
+        Some(file) => format!(
+            "cannot create the folder {}: {} is a file, not a folder",
+            dir.display(),
+            file.display()
+        ),
+        None => format!("cannot create {}: {e}", dir.display()),
+    })?;
     let name = path
         .file_name()
         .ok_or_else(|| format!("{} is not a file path", path.display()))?;
@@ -106,6 +148,37 @@ pub fn print_json(value: &impl serde::Serialize) -> Result<(), String> {
 pub fn read_json<T: serde::de::DeserializeOwned>(path: &Path) -> Result<T, String> {
     let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
     serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))
+}
+
+/// [`read_json`] of a report that a command joins (`--merge`, `--overlay`): a file that reads
+/// as JSON but is not that report says what was expected (`what`) before serde's detail. "invalid
+/// type: map, expected a sequence at line 1 column 0" (an OAS report given to `t1 --merge`)
+/// named neither the report expected nor the one given.
+pub fn read_report<T: serde::de::DeserializeOwned>(path: &Path, what: &str) -> Result<T, String> {
+    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    serde_json::from_str(&text).map_err(|e| {
+        let given =
+            serde_json::from_str::<serde_json::Value>(&text).map_or("not JSON", |v| json_kind(&v));
+        format!("{}: {what} expected, {given} ({e})", path.display())
+    })
+}
+
+/// What a JSON file most likely is, among the files the commands write.
+fn json_kind(v: &serde_json::Value) -> &'static str {
+    let has = |key: &str| v.get(key).is_some();
+    if v.is_array() {
+        "this is a list (the output of `rocking t1 --json`?)"
+    } else if has("characteristic") {
+        "this is a `rocking suite --json` report"
+    } else if has("levels") && has("sizes") {
+        "this is an OAS report (`rocking oas --json`)"
+    } else if has("stop_reason") {
+        "this is the summary.json of `rocking simulate`"
+    } else if has("blocks") || has("excitation") {
+        "this is a scene"
+    } else {
+        "this is other JSON"
+    }
 }
 
 /// `prefix` followed by `suffix`: `with_suffix("out/ff", "-oas.svg")` is `out/ff-oas.svg` (a

@@ -85,6 +85,40 @@ fn bad_values_are_refused_naming_the_argument() {
     }
 }
 
+/// A negative number given as a value (`--pga -1`, not only `--pga=-1`) reaches the option's
+/// own check, which names the option and the rule; clap read it as an unknown flag and said
+/// "unexpected argument '-1' found", naming neither the option nor what it must be.
+#[test]
+fn a_negative_value_is_refused_by_its_own_check() {
+    for (args, named) in [
+        (
+            vec![
+                "design", "width", "--height", "12", "--pga", "-1", "--t1", "0.7",
+            ],
+            "--pga",
+        ),
+        (
+            vec![
+                "design", "check", "--width", "-1.3", "--height", "12", "--pga", "1", "--t1", "0.7",
+            ],
+            "--width",
+        ),
+        (vec!["oc", "--size", "-6.02"], "--size"),
+        (vec!["oc", "--slenderness", "-3"], "--slenderness"),
+        (vec!["oas", "x.AT2", "--levels", "-3"], "--levels"),
+        (vec!["oas", "x.AT2", "--size-min", "-0.1"], "--size-min"),
+        (vec!["t1", "x.AT2", "--record-dt", "-0.01"], "--record-dt"),
+        (vec!["suite", "x.AT2", "--level-max", "-10"], "--level-max"),
+    ] {
+        let (code, out, err) = rocking(&args);
+        assert_eq!(code, 2, "{args:?}: {err}");
+        assert!(out.is_empty(), "{args:?} printed {out}");
+        assert!(!err.contains("unexpected argument"), "{args:?}: {err}");
+        assert!(err.contains(named), "{args:?}: {err}");
+        assert!(err.contains("got -"), "{args:?}: {err}");
+    }
+}
+
 /// A failure after the arguments were accepted (here a missing record) exits 1 and says which
 /// file.
 #[test]

@@ -30,7 +30,9 @@ def _shaped(columns, shape):
     """Arrays of ``shape`` (0-d: Python scalars, as the CLI's JSON)."""
     out = {}
     for k, v in columns.items():
-        a = np.asarray(v).reshape(shape)
+        # An empty column of names (``governing``) is still strings, not numpy's float default.
+        strings = isinstance(v, list) and not v and k == "governing"
+        a = np.asarray(v, dtype=str if strings else None).reshape(shape)
         out[k] = a.item() if shape == () else a
     return out
 

@@ -51,8 +51,19 @@ def simulation(result, ax=None, events=True):
     """Block rotations (rad) of a :class:`rocking.Simulation` against time, one line per block,
     and a vertical line at each event (``events``)."""
     ax = _axes(ax)
+    # Blocks with the same rotation throughout (a column rocking as one) are one line with one
+    # legend entry: drawn one over the other, all but the last were hidden behind it.
+    groups = []
     for k in range(result.block_rotations.shape[1]):
-        ax.plot(result.t, result.block_rotations[:, k], label=f"block {k}")
+        column = result.block_rotations[:, k]
+        same = [g for g in groups if np.array_equal(result.block_rotations[:, g[0]], column)]
+        if same:
+            same[0].append(k)
+        else:
+            groups.append([k])
+    for g in groups:
+        label = f"block {g[0]}" if len(g) == 1 else f"blocks {', '.join(map(str, g))} (as one)"
+        ax.plot(result.t, result.block_rotations[:, g[0]], label=label)
     if events:
         _event_lines(ax, result.events)
     ax.set_xlabel("t [s]")
@@ -107,7 +118,7 @@ def oas(result, against="p", ax=None, fits=True):
             ax.plot([f_min, f_min], [1.0, lmax], "--", label=f"f_min = i_cr / t1 (Eq. 20), t1 = {t1:.3f} s")
             if tp is not None and beta is not None:
                 lv = np.array([1.0, lmax])
-                ax.plot(lv / beta + 1.0 / tp, lv, "--", label=f"Eq. 28, t1' = {tp:.3f} s, beta = {beta:.2f}")
+                ax.plot(lv / beta + 1.0 / tp, lv, "--", label=f"Eq. 28, t1' = {tp:.3f} s, beta = {beta:.2f} s")
         else:
             if against == "p":
                 p = np.linspace(0.0, np.nanmax(x, initial=1.0) * 1.1, 401)[1:]
@@ -119,7 +130,7 @@ def oas(result, against="p", ax=None, fits=True):
             eq21, eq30 = _rocking._simplified_oas(p, t1, result.i_cr, tp, beta)
             ax.plot(xs, eq21, "--", label=f"Eq. 21, t1 = {t1:.3f} s")
             if eq30 is not None:
-                ax.plot(xs, eq30, "--", label=f"Eq. 30, t1' = {tp:.3f} s, beta = {beta:.2f}")
+                ax.plot(xs, eq30, "--", label=f"Eq. 30, t1' = {tp:.3f} s, beta = {beta:.2f} s")
     ax.set_xlabel({"p": "p [1/s]", "f": "f = p a_p / a_p,min [1/s]", "size": "size R [m] (half diagonal)"}[against])
     if against == "size":
         ax.set_xscale("log")
@@ -138,6 +149,11 @@ def _oc_points(ax, result, flags, label):
     ax.plot(result.p_tp[rows], result.levels[cols], "o", markersize=3, label=label)
     ax.plot(result.p_tp, result.envelope, "-", label="envelope")
     ax.set_xscale("log")
+    # The whole computed grid, not only the points that overturn (a grid from p t_p = 0.1 whose
+    # shortest pulses overturned nothing was drawn from 0.2, as if it started there).
+    lo, hi = float(np.min(result.p_tp)), float(np.max(result.p_tp))
+    ax.set_xlim(lo / 1.1, hi * 1.1)
+    ax.set_ylim(0.0, float(np.max(result.levels)) * 1.03)
     return ax
 
 

@@ -51,6 +51,35 @@ pub fn value_error(detail: impl std::fmt::Display) -> PyErr {
     Python::attach(|py| raise(py, None, &detail.to_string()))
 }
 
+/// Checks that `path` can be opened for reading, as the `OSError` Python users expect
+/// (`FileNotFoundError`, `IsADirectoryError`, …) with its `errno`, `strerror` and `filename`:
+/// `[Errno 2] No such file or directory: 'FF-44.AT2'`. The bare conversion of the I/O error
+/// said "No such file or directory (os error 2)" without the file, which among the records of
+/// a suite left the user to guess which one.
+pub fn readable(path: &std::path::Path) -> PyResult<()> {
+    let file = path.display().to_string();
+    let opened = std::fs::File::open(path).and_then(|f| {
+        // Opening a folder succeeds on Linux; reading it is what fails (EISDIR).
+        if f.metadata()?.is_dir() {
+            Err(std::io::Error::from_raw_os_error(21))
+        } else {
+            Ok(())
+        }
+    });
+    opened.map_err(|e| match e.raw_os_error() {
+        Some(code) => {
+            let text = e.to_string();
+            let strerror = text
+                .strip_suffix(&format!(" (os error {code})"))
+                .unwrap_or(&text)
+                .to_string();
+            // OSError(errno, strerror, filename) is built as the subclass of that errno.
+            pyo3::exceptions::PyOSError::new_err((code, strerror, file))
+        }
+        None => pyo3::exceptions::PyOSError::new_err(format!("{file}: {e}")),
+    })
+}
+
 /// `Result<T, rocking::RockingError>` → `PyResult<T>`.
 pub trait IntoPy<T> {
     /// Converts the library's error.

@@ -177,7 +177,7 @@ pub fn read_record(
         ))
     })?;
     // A missing or unreadable file is the OSError Python users expect (FileNotFoundError, …).
-    std::fs::metadata(&path)?;
+    crate::errors::readable(&path)?;
     let format = PlainFormat { dt, scale };
     let inner = py
         .detach(|| records::read_record(&path, &format))

@@ -57,7 +57,7 @@ pub fn _simulate<'py>(
     let (any, scene_name) = match (&path, text) {
         (Some(p), None) => {
             // A missing file is the OSError Python users expect (FileNotFoundError, …).
-            std::fs::metadata(p)?;
+            crate::errors::readable(p)?;
             let s = scene::load_any(p).map_err(|e| value_error(e.to_string()))?;
             (s, Some(p.display().to_string()))
         }

@@ -108,7 +108,7 @@ pub(crate) fn record_of(obj: &Bound<'_, PyAny>) -> PyResult<(CoreRecord, Option<
     let path: PathBuf = obj.extract().map_err(|_| {
         value_error("record: expected a rocking.Record or the path of a record file")
     })?;
-    std::fs::metadata(&path)?;
+    crate::errors::readable(&path)?;
     let record = records::read_record(&path, &PlainFormat::default()).map_err(value_error)?;
     Ok((record, Some(path.display().to_string())))
 }
@@ -277,9 +277,14 @@ pub fn _t1<'py>(
     let o = grid.options(&simulation)?;
     let method = t1_method(band, converge_step, converge_halvings)?;
     let runner = Runner { threads, progress };
+    // Every record read before the first spectrum: a missing or malformed file late in the
+    // list was refused only after the spectra of the records before it.
+    let records = records
+        .iter()
+        .map(record_of)
+        .collect::<PyResult<Vec<_>>>()?;
     let mut rows = Vec::with_capacity(records.len());
-    for r in &records {
-        let (record, file) = record_of(r)?;
+    for (record, file) in records {
         let t0 = Instant::now();
         let result = spectra::t1_of_with(&o, method, |x| compute_oas(py, &record, x, &runner))?;
         let t_p = spectra::replacement_sine(&record).map(|s| s.t_p);

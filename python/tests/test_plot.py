@@ -79,3 +79,14 @@ def test_oc_plot(plt):
     assert len(points.get_xdata()) == int(o.unsafe.sum())
     np.testing.assert_array_equal(envelope.get_ydata(), o.envelope)
     assert ax.get_xscale() == "log"
+
+
+def test_oc_plot_spans_the_whole_grid(plt):
+    # The shortest pulses of this grid overturn nothing: the axes must still start at the
+    # grid's first p t_p (they were fitted to the unsafe points and began at about 0.2).
+    o = rocking.oc(ptp=8, levels=6)
+    assert not o.unsafe[0].any()
+    ax = o.plot()
+    lo, hi = ax.get_xlim()
+    assert lo <= o.p_tp.min() and hi >= o.p_tp.max()
+    assert ax.get_ylim()[0] <= 1.0 and ax.get_ylim()[1] >= o.levels.max()

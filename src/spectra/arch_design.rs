@@ -124,7 +124,7 @@ pub fn arch_suite(
     fractiles: &[f64],
     name: &str,
 ) -> Result<Vec<ArchCharacteristic>, SpectraError> {
-    let t1s: Vec<f64> = spectra.iter().filter_map(ArchOas::t1).collect();
+    super::suite::distinct_fractiles(fractiles)?;
     fractiles
         .iter()
         .map(|&q| {
@@ -133,7 +133,10 @@ pub fn arch_suite(
             Ok(ArchCharacteristic {
                 fractile: q,
                 design_t1,
-                record_t1_fractile: statistics::fractile(&t1s, q),
+                record_t1_fractile: super::suite::record_t1_fractile(
+                    spectra.iter().map(ArchOas::t1),
+                    q,
+                ),
                 check: score_t1(spectra.iter().map(|o| (o, design_t1))),
                 oas,
             })

@@ -5,7 +5,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::suite::{characteristic_oas, violations_in_stated_ranges, Violations};
-use super::{statistics, Oas, OasLevel, Oc, SizeSearch, SpectraError, TransformedHull};
+use super::{Oas, OasLevel, Oc, SizeSearch, SpectraError, TransformedHull};
 
 /// One level of an OAS: the library's level and, when a size overturns, the largest unsafe one
 /// with its `p` and `f = p · level`.
@@ -236,10 +236,11 @@ impl SuiteReport {
         records: &[(Oas, f64)],
         fractiles: &[f64],
     ) -> Result<SuiteReport, SpectraError> {
+        super::suite::distinct_fractiles(fractiles)?;
         let mut records: Vec<&(Oas, f64)> = records.iter().collect();
         records.sort_by(|a, b| a.0.record.cmp(&b.0.record));
         let spectra: Vec<Oas> = records.iter().map(|r| r.0.clone()).collect();
-        let t1s: Vec<f64> = spectra.iter().filter_map(Oas::t1).collect();
+
         let characteristic = fractiles
             .iter()
             .map(|&q| {
@@ -250,7 +251,10 @@ impl SuiteReport {
                     fractile: q,
                     design_t1: s.t1,
                     f_min: s.f_min.map(|m| m.f),
-                    record_t1_fractile: statistics::fractile(&t1s, q),
+                    record_t1_fractile: super::suite::record_t1_fractile(
+                        spectra.iter().map(Oas::t1),
+                        q,
+                    ),
                     oas: OasReport::of(&c, 0.0),
                     violations: violations_in_stated_ranges(&spectra, |_| design),
                 })

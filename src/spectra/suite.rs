@@ -66,6 +66,33 @@ pub(super) fn valid_fractile(q: f64) -> Result<(), SpectraError> {
     Ok(())
 }
 
+/// The `q`-fractile of the records' own `t₁` (`None` for a record that overturns no size at
+/// any level of the grid): such a record ranks lowest, as the shortest replacement duration
+/// (Eq. 21 with `t₁ → 0` calls every block safe), and a fractile that falls on it is `None`.
+/// Leaving such records out gave the median of the others: of two records, one overturning
+/// nothing, the "0.5-fractile of the records' t₁" was the other's t₁ while the design t₁ of
+/// the 0.5 characteristic OAS was none.
+pub fn record_t1_fractile(t1s: impl Iterator<Item = Option<f64>>, q: f64) -> Option<f64> {
+    let t1s: Vec<f64> = t1s.map(|t| t.unwrap_or(0.0)).collect();
+    super::statistics::fractile(&t1s, q).filter(|&t| t > 0.0)
+}
+
+/// The fractiles of a suite's report: at least one, each valid, none twice. "0.5,0.5" drew
+/// every curve of that fractile twice, printed its rows twice and wrote its CSV rows twice
+/// under one key.
+pub fn distinct_fractiles(fractiles: &[f64]) -> Result<(), SpectraError> {
+    if fractiles.is_empty() {
+        return Err(invalid("fractile", "at least one fractile is needed"));
+    }
+    for (k, &q) in fractiles.iter().enumerate() {
+        valid_fractile(q)?;
+        if fractiles[..k].contains(&q) {
+            return Err(invalid("fractile", format!("{q} is given twice")));
+        }
+    }
+    Ok(())
+}
+
 /// Whether two level lists are the same levels (the same values in the same order).
 pub(super) fn same_levels(a: &[OasLevel], b: &[OasLevel]) -> bool {
     a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x.level == y.level)
@@ -287,6 +314,62 @@ mod tests {
                 })
                 .collect::<Vec<_>>()
         );
+    }
+
+    /// "0.5,0.5" made a report with every curve, row and CSV line of 0.5 twice; an empty list a
+    /// report without any design t₁ (Python's `fractiles=[]`).
+    #[test]
+    fn a_suite_report_needs_distinct_fractiles() {
+        for (fractiles, says) in [
+            (vec![0.5, 0.5], "0.5 is given twice"),
+            (vec![0.84, 0.5, 0.84], "0.84 is given twice"),
+            (Vec::<f64>::new(), "at least one"),
+            (vec![0.5, 1.5], "(0, 1]"),
+        ] {
+            let e = distinct_fractiles(&fractiles)
+                .err()
+                .unwrap_or_else(|| panic!("{fractiles:?} accepted"));
+            assert!(e.to_string().starts_with("fractile"), "{e}");
+            assert!(e.to_string().contains(says), "{e}");
+        }
+        assert!(distinct_fractiles(&[0.84, 0.5]).is_ok());
+        // The suite report (CLI and Python) and the arch suite refuse them.
+        let a = oas("a", [None, Some(6), Some(5), Some(4)]);
+        #[cfg(feature = "serde")]
+        {
+            let spectra = [(a.clone(), 0.0)];
+            let report = |q: &[f64]| crate::spectra::report::SuiteReport::of("s", &spectra, q);
+            assert!(report(&[0.5, 0.5]).is_err());
+            assert_eq!(report(&[0.84, 0.5]).unwrap().characteristic.len(), 2);
+        }
+        let _ = a;
+    }
+
+    #[test]
+    fn a_record_that_overturns_nothing_ranks_lowest_among_the_records_t1() {
+        let t = |v: &[Option<f64>], q| record_t1_fractile(v.iter().copied(), q);
+        assert_eq!(t(&[None, Some(0.2)], 0.5), None);
+        assert_eq!(t(&[None, Some(0.2)], 1.0), Some(0.2));
+        assert_eq!(t(&[Some(0.3), None, Some(0.2)], 0.5), Some(0.2));
+        assert_eq!(t(&[Some(0.3), Some(0.2)], 0.5), Some(0.2));
+        assert_eq!(t(&[None], 0.84), None);
+        // In the suite report: the 0.5 characteristic OAS of these two has no unsafe level,
+        // and the records' t1 fractile agrees.
+        #[cfg(feature = "serde")]
+        {
+            let safe = oas("safe", [None, None, None, None]);
+            let b = oas("b", [None, Some(6), Some(5), Some(4)]);
+            let r = crate::spectra::report::SuiteReport::of(
+                "s",
+                &[(safe, 0.0), (b.clone(), 0.0)],
+                &[0.5, 1.0],
+            )
+            .unwrap();
+            assert_eq!(r.characteristic[0].design_t1, None);
+            assert_eq!(r.characteristic[0].record_t1_fractile, None);
+            assert_eq!(r.characteristic[1].record_t1_fractile, b.t1());
+            assert!(b.t1().is_some());
+        }
     }
 
     #[test]

@@ -15,7 +15,7 @@ use rocking::spectra::{
 use super::oas::level_chart;
 use super::oc::Shape;
 use super::sweep::{count, grid_count, positive};
-use crate::output::print_json;
+use crate::output::{check_prefix_writable, check_writable, print_json};
 use crate::plot::{Chart, Scale, Series, Style, COLORS};
 use crate::progress;
 
@@ -139,6 +139,9 @@ pub struct ArchOasArgs {
 }
 
 fn run_oas(a: &ArchOasArgs) -> Result<(), String> {
+    if let Some(prefix) = &a.svg {
+        check_prefix_writable("--svg", prefix, "-oas.svg")?;
+    }
     if a.radius_min >= a.radius_max && a.radius_n > 1 {
         return Err(format!(
             "--radius-min ({}) must be below --radius-max ({})",
@@ -299,6 +302,9 @@ pub struct ArchOcArgs {
 }
 
 fn run_oc(a: &ArchOcArgs) -> Result<(), String> {
+    if let Some(path) = &a.svg {
+        check_writable("--svg", path)?;
+    }
     super::sweep::ascending("--ptp-min", a.ptp_min, "--ptp-max", a.ptp_max, a.ptp_n)?;
     super::sweep::levels_from_one(a.level_max, a.level_n)?;
     let options = a.family.options();
@@ -353,6 +359,13 @@ fn run_oc(a: &ArchOcArgs) -> Result<(), String> {
                     .collect(),
             ),
             env,
+            super::oc::grid_extent(
+                &report
+                    .points
+                    .iter()
+                    .map(|q| (q.p_tp, q.level, ()))
+                    .collect::<Vec<_>>(),
+            ),
         )
         .write(path)?;
     }

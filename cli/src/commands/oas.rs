@@ -10,7 +10,7 @@ use rocking::spectra::report::OasReport;
 use rocking::spectra::{self, Oas};
 
 use super::sweep::{OasGridArgs, Shard, SimulationArgs};
-use crate::output::{print_json, read_json};
+use crate::output::{check_prefix_writable, print_json, read_report};
 use crate::plot::{Chart, Scale, Series, Style, COLORS};
 use crate::progress;
 
@@ -69,6 +69,9 @@ pub struct OasArgs {
 
 /// Runs the command.
 pub fn run(a: &OasArgs) -> Result<(), String> {
+    if let Some(prefix) = &a.svg {
+        check_prefix_writable("--svg", prefix, "-oas.svg")?;
+    }
     if !a.overlay.is_empty() {
         return super::overlay::run(&a.overlay, a.svg.as_deref(), a.png);
     }
@@ -79,7 +82,7 @@ pub fn run(a: &OasArgs) -> Result<(), String> {
             let parts: Vec<OasReport> = a
                 .merge
                 .iter()
-                .map(|p| read_json(p))
+                .map(|p| read_report(p, "an OAS report (`rocking oas --json`, whole or --shard)"))
                 .collect::<Result<_, _>>()?;
             spectra::T1Result {
                 oas: OasReport::merge(parts).ok_or("nothing to merge")?,
@@ -187,7 +190,7 @@ fn charts(o: &Oas) -> Vec<(&'static str, Chart)> {
         if let Some(fit) = s.fit {
             let eq30 = |p: f64| rocking::design::improved_oas_eq30(p, t1, fit.t1_prime, fit.beta);
             let name = format!(
-                "Eq. 30, t1' = {:.3} s, beta = {:.2}",
+                "Eq. 30, t1' = {:.3} s, beta = {:.2} s",
                 fit.t1_prime, fit.beta
             );
             let curve = |points: Vec<(f64, f64)>| Series {
@@ -204,7 +207,7 @@ fn charts(o: &Oas) -> Vec<(&'static str, Chart)> {
             ));
             by_f.push(Series {
                 name: format!(
-                    "Eq. 28, t1' = {:.3} s, beta = {:.2}",
+                    "Eq. 28, t1' = {:.3} s, beta = {:.2} s",
                     fit.t1_prime, fit.beta
                 ),
                 points: vec![

@@ -10,7 +10,7 @@ use rocking::spectra::report::OcReport;
 use rocking::spectra::{self, column_of_size, linear_levels, log_sizes, PulseShape, SweepOptions};
 
 use super::sweep::{count, grid_count, positive, Shard, SimulationArgs};
-use crate::output::print_json;
+use crate::output::{check_writable, print_json};
 use crate::plot::{Chart, Scale, Series, Style, COLORS};
 use crate::progress;
 
@@ -47,7 +47,8 @@ pub struct OcArgs {
     /// Equal blocks in the column.
     #[arg(long, default_value_t = 1, value_parser = count)]
     pub blocks: usize,
-    /// H/B of each block.
+    /// H/B of the whole column (the equivalent monolith, as `rocking oas --slenderness`): each
+    /// of the --blocks equal blocks is H/n high and B wide, i.e. of H/B = slenderness / n.
     #[arg(long, default_value_t = 12.0, value_parser = positive)]
     pub slenderness: f64,
     /// Size R of the column (half diagonal of the equivalent monolith) [m].
@@ -99,6 +100,9 @@ pub fn run(a: &OcArgs) -> Result<(), String> {
     let t_p: Vec<f64> = a.shard.keep(&ptp).iter().map(|x| x / mono_p).collect();
     let levels = linear_levels(1.0, a.level_max, a.level_n);
     let a_p: Vec<f64> = levels.iter().map(|l| l * mono_a_p_min).collect();
+    if let Some(path) = &a.svg {
+        check_writable("--svg", path)?;
+    }
     let bar = progress::bar(t_p.len() as u64, "OC");
     let tick = || bar.inc(1);
     let res = spectra::overturning_curve(&column, shape, &t_p, &a_p, &sweep, Some(&tick))
@@ -142,26 +146,46 @@ pub fn run(a: &OcArgs) -> Result<(), String> {
                 pts.iter().filter(|p| p.2).map(|p| (p.0, p.1)).collect(),
             ),
             env,
+            grid_extent(&pts),
         )
         .write(path)?;
     }
     Ok(())
 }
 
+/// The extent `((x_lo, x_hi), (y_lo, y_hi))` of a grid's points `(x, y, …)`.
+pub(super) fn grid_extent<T>(points: &[(f64, f64, T)]) -> ((f64, f64), (f64, f64)) {
+    let range = |values: &mut dyn Iterator<Item = f64>| {
+        values.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+            (lo.min(v), hi.max(v))
+        })
+    };
+    (
+        range(&mut points.iter().map(|p| p.0)),
+        range(&mut points.iter().map(|p| p.1)),
+    )
+}
+
 /// The chart of an overturning curve: the grid points that overturn (or collapse), `(name,
-/// points)`, and their lower envelope, against `p t_p` on a log axis.
+/// points)`, and their lower envelope, against `p t_p` on a log axis. The axes span the whole
+/// computed grid (`extent`, [`grid_extent`]), not only the points that overturn: a grid from
+/// p t_p = 0.1 whose shortest pulses overturned nothing was drawn from 0.2, as if it started
+/// there.
 pub(super) fn oc_chart(
     title: String,
     x_label: &str,
     y_label: &str,
     (name, points): (&str, Vec<(f64, f64)>),
     envelope: Vec<(f64, f64)>,
+    (x_extent, y_extent): ((f64, f64), (f64, f64)),
 ) -> Chart {
     Chart {
         title,
         x_label: x_label.into(),
         y_label: y_label.into(),
         x_scale: Scale::Log,
+        x_range: Some(x_extent),
+        y_range: Some((y_extent.0.min(0.0), y_extent.1)),
         series: vec![
             Series {
                 name: name.into(),

@@ -19,7 +19,7 @@ use std::path::{Path, PathBuf};
 use rocking::spectra::report::OasReport;
 use serde::Serialize;
 
-use crate::output::{print_json, read_json};
+use crate::output::{print_json, read_report};
 use crate::plot::{Chart, Scale, Series, Style, COLORS};
 
 /// One spectrum of the overlay.
@@ -310,7 +310,7 @@ fn charts(reports: &[OasReport]) -> Vec<(&'static str, Chart)> {
 pub fn run(files: &[PathBuf], svg: Option<&Path>, png: bool) -> Result<(), String> {
     let reports: Vec<OasReport> = files
         .iter()
-        .map(|p| read_json(p).map_err(|e| format!("{}: {e}", p.display())))
+        .map(|p| read_report(p, "an OAS report (`rocking oas --json`)"))
         .collect::<Result<_, _>>()?;
     if reports.is_empty() {
         return Err("--overlay: no OAS given".into());

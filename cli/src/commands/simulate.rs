@@ -15,7 +15,7 @@ use clap::Args;
 use rocking::driver::{self, EventKind, Outcome, StopReason};
 use rocking::ground::FnMotion;
 
-use crate::output::{json_tree, write_atomic, write_atomic_with};
+use crate::output::{check_writable, json_tree, write_atomic, write_atomic_with};
 use crate::plot::{Chart, Marker, Series, Style, COLORS};
 use crate::progress;
 use rocking::scene::{self, Scene, Summary};
@@ -44,6 +44,11 @@ pub fn run(a: &SimulateArgs) -> Result<(), String> {
     };
     if plot.is_some() && !history {
         return Err("--plot needs the history (output.history must be true)".into());
+    }
+    // The folder and the chart before the run, which can be long (drums, records).
+    check_writable("--out", &out.join("summary.json"))?;
+    if let Some(p) = plot {
+        check_writable("--plot", p)?;
     }
     let scene = match any {
         scene::AnyScene::Column(scene) => scene,
@@ -193,14 +198,33 @@ fn chart(scene: &Scene, o: &Outcome) -> Result<Chart, String> {
         y_label: "block rotation [rad]".into(),
         ..Chart::default()
     };
+    // Blocks with the same rotation throughout (a column rocking as one) are one line with one
+    // legend entry: drawn one over the other, all but the last were invisible while the
+    // legend listed each.
+    type Group = (Vec<usize>, Vec<(f64, f64)>);
+    let mut groups: Vec<Group> = Vec::new();
     for k in 0..n {
+        let points: Vec<(f64, f64)> = (0..h.len())
+            .map(|i| (h.t[i], h.block_angles_at(i)[k]))
+            .collect();
+        match groups.iter_mut().find(|(_, p)| *p == points) {
+            Some((blocks, _)) => blocks.push(k),
+            None => groups.push((vec![k], points)),
+        }
+    }
+    for (blocks, points) in groups {
+        let name = match blocks.as_slice() {
+            [k] => format!("block {k}"),
+            _ => {
+                let list: Vec<String> = blocks.iter().map(usize::to_string).collect();
+                format!("blocks {} (as one)", list.join(", "))
+            }
+        };
         chart.series.push(Series {
-            name: format!("block {k}"),
-            points: (0..h.len())
-                .map(|i| (h.t[i], h.block_angles_at(i)[k]))
-                .collect(),
+            name,
+            points,
             style: Style::Line,
-            color: COLORS[k % COLORS.len()],
+            color: COLORS[blocks[0] % COLORS.len()],
         });
     }
     for e in &o.events {

@@ -15,7 +15,7 @@ use serde::Deserialize;
 
 use super::suite_charts;
 use super::sweep::{OasGridArgs, Shard, SimulationArgs};
-use crate::output::{print_json, read_json, with_suffix, write_atomic};
+use crate::output::{check_prefix_writable, print_json, read_json, with_suffix, write_atomic};
 use crate::progress;
 
 /// Options of `rocking suite`.
@@ -116,24 +116,31 @@ fn merged(files: &[PathBuf]) -> Result<Vec<(Oas, f64)>, String> {
 
 /// Runs the command.
 pub fn run(a: &SuiteArgs) -> Result<(), String> {
+    // Before the spectra: the report refuses them after.
+    spectra::suite::distinct_fractiles(&a.fractile).map_err(|e| format!("--{e}"))?;
+    if let Some(prefix) = &a.csv {
+        check_prefix_writable("--csv", prefix, "-records.csv")?;
+    }
+    if let Some(prefix) = &a.svg {
+        check_prefix_writable("--svg", prefix, "-oas.svg")?;
+    }
     let spectra = if a.merge.is_empty() {
         let o = a.grid.options(&a.simulation)?;
         let files = a.shard.keep(&a.records);
-        let bar = progress::bar((files.len() * o.levels.len()) as u64, "suite");
-        let mut out = Vec::new();
-        for f in files {
-            bar.set_message(f.display().to_string());
-            let record = super::sweep::read(&f, &a.record_format)?;
-            if out
-                .iter()
-                .any(|(p, _): &(Oas, f64)| p.record == record.name)
-            {
+        let records = super::sweep::read_all(&files, &a.record_format)?;
+        for (k, (f, record)) in records.iter().enumerate() {
+            if records[..k].iter().any(|(_, r)| r.name == record.name) {
                 return Err(format!(
                     "{}: record `{}` is already in the suite",
                     f.display(),
                     record.name
                 ));
             }
+        }
+        let bar = progress::bar((files.len() * o.levels.len()) as u64, "suite");
+        let mut out = Vec::new();
+        for (f, record) in records {
+            bar.set_message(f.display().to_string());
             let t0 = Instant::now();
             let tick = || bar.inc(1);
             let r = spectra::oas(&record, &o, Some(&tick))
@@ -182,8 +189,16 @@ fn range(v: &Violations) -> String {
 fn summary(r: &SuiteReport) -> String {
     let mut s = String::new();
     let t1s: Vec<f64> = r.records.iter().filter_map(|o| o.summary.t1).collect();
+    // Records that overturn no size at any level have no t1: said, not left out of the range
+    // unmentioned (the range of the others read as the suite's).
+    let none = r.records.len() - t1s.len();
+    let without = match none {
+        0 => String::new(),
+        1 => " (1 record overturns no size on the grid: no t1)".into(),
+        n => format!(" ({n} records overturn no size on the grid: no t1)"),
+    };
     s += &format!(
-        "suite {}: {} records, t1 of the records {}…{} s, {:.1} s of OAS\n",
+        "suite {}: {} records, t1 of the records {}…{} s{without}, {:.1} s of OAS\n",
         r.name,
         r.records.len(),
         num(t1s.iter().copied().reduce(f64::min)),

@@ -1,7 +1,7 @@
 //! What the spectra commands (`oc`, `oas`, `t1`) share: the settings of every simulation of a
 //! sweep, the OAS grid, `--shard`, and the value checks of their arguments.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::str::FromStr;
 
 use clap::{Args, ValueEnum};
@@ -207,6 +207,28 @@ pub fn read(path: &Path, format: &RecordFormatArgs) -> Result<Record, String> {
             e.to_string()
         }
     })
+}
+
+/// Reads every record of a `t1` or `suite` run before the first spectrum is computed, each
+/// with its file: a missing, malformed or all-zero file among many is refused at once, not
+/// after the spectra of the records before it (an hour into a suite of 44).
+pub fn read_all(
+    paths: &[PathBuf],
+    format: &RecordFormatArgs,
+) -> Result<Vec<(PathBuf, Record)>, String> {
+    paths
+        .iter()
+        .map(|path| {
+            let record = read(path, format)?;
+            if record.pga() == 0.0 {
+                return Err(format!(
+                    "{}: the record is zero everywhere (no peak to scale to the levels)",
+                    path.display()
+                ));
+            }
+            Ok((path.clone(), record))
+        })
+        .collect()
 }
 
 /// The settings of every simulation of a sweep.

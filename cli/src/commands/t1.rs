@@ -11,7 +11,7 @@ use rocking::spectra::{self, statistics};
 use serde::{Deserialize, Serialize};
 
 use super::sweep::{OasGridArgs, Procedure, Shard, SimulationArgs};
-use crate::output::{print_json, read_json};
+use crate::output::{check_prefix_writable, print_json, read_report};
 use crate::plot::{Chart, Series, Style, COLORS};
 use crate::progress;
 
@@ -152,6 +152,10 @@ pub fn run(a: &T1Args) -> Result<(), String> {
         let method = a.method();
         method.check().map_err(|e| e.to_string())?;
         let files = a.shard.keep(&a.records);
+        if let Some(prefix) = &a.svg {
+            check_prefix_writable("--svg", prefix, "-tp.svg")?;
+        }
+        let records = super::sweep::read_all(&files, &a.record_format)?;
         // A lower bound of the spectra when converging (more steps may be needed).
         let bar = progress::bar(
             (files.len() * o.levels.len() * method.min_spectra()) as u64,
@@ -159,9 +163,8 @@ pub fn run(a: &T1Args) -> Result<(), String> {
         );
         let procedure = (a.grid.procedure != Procedure::Converged).then(|| a.grid.procedure.name());
         let mut rows = Vec::new();
-        for f in files {
+        for (f, record) in records {
             bar.set_message(f.display().to_string());
-            let record = super::sweep::read(&f, &a.record_format)?;
             let t0 = Instant::now();
             let tick = || bar.inc(1);
             let result =
@@ -189,7 +192,10 @@ pub fn run(a: &T1Args) -> Result<(), String> {
     } else {
         let mut rows = Vec::new();
         for p in &a.merge {
-            rows.extend(read_json::<Vec<Row>>(p)?);
+            rows.extend(read_report::<Vec<Row>>(
+                p,
+                "the list of `rocking t1 --json` (whole or --shard)",
+            )?);
         }
         // Rows written before t_p was part of the output: t_p from the record, when readable.
         for r in rows.iter_mut().filter(|r| r.t_p.is_none()) {
@@ -232,7 +238,7 @@ pub fn run(a: &T1Args) -> Result<(), String> {
     if a.json {
         print_json(&rows)?;
     } else {
-        println!("record                          t1 [s]   t1' [s]  beta     f_min [1/s] t_p [s]");
+        println!("record                          t1 [s]   t1' [s]  beta [s] f_min [1/s] t_p [s]");
         for r in &rows {
             let s = &r.summary;
             let f = |v: Option<f64>| {

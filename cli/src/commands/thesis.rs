@@ -2,7 +2,10 @@
 
 use std::process::ExitCode;
 
+use rocking::design::{pier_width, MassDistribution};
 use rocking::model::column::{Block, Column, GRAVITY};
+use rocking::model::single_block::{normalised_critical_impulse, slenderness_angle};
+use rocking::samples::Printed;
 use rocking::{impact_model, opening_model, samples, ModelOptions, Solver, Status};
 
 /// One line of the comparison table; returns whether it matches to the printed digits.
@@ -17,6 +20,41 @@ fn line(what: &str, got: f64, printed: f64, decimals: i32) -> bool {
         dec = decimals as usize,
     );
     ok
+}
+
+/// `x` rounded to `decimals` decimals.
+fn rounded(x: f64, decimals: i32) -> f64 {
+    let scale = 10f64.powi(decimals);
+    (x * scale).round() / scale
+}
+
+/// A line for a printed value that the computation does not give to the printed digits but
+/// gives after rounding twice (to one decimal more, then to the printed ones): said as such
+/// on its line instead of hidden or counted as reproduced (thesis 5.3.4, B_a; see the design
+/// tests). Any other difference is a MISMATCH, as for [`line`]. Counts such lines in
+/// `double_rounded`.
+fn line_or_double_rounding(
+    what: &str,
+    got: f64,
+    printed: Printed,
+    double_rounded: &mut usize,
+) -> bool {
+    let d = printed.decimals;
+    if printed.matches(got) || rounded(rounded(got, d + 1), d) != printed.value {
+        return line(what, got, printed.value, d);
+    }
+    *double_rounded += 1;
+    let width = (d + 6) as usize;
+    println!(
+        "  {what:<52} {got:>width$.prec$}   thesis {:>width$.dec$}   printed after double rounding ({got:.prec$} -> {:.prec1$} -> {:.dec$})",
+        printed.value,
+        rounded(got, d + 1),
+        printed.value,
+        prec = (d + 2) as usize,
+        prec1 = (d + 1) as usize,
+        dec = d as usize,
+    );
+    true
 }
 
 fn loss(before: f64, after: f64) -> f64 {
@@ -134,6 +172,49 @@ pub fn run() -> ExitCode {
         r.configurations_examined
     );
 
+    println!("\nNormalised critical impulse i_cr = sqrt(2 / (1 + cos delta)) (Eq. 18):");
+    for (h_over_b, printed) in samples::NORMALISED_CRITICAL_IMPULSE {
+        let delta = slenderness_angle(1.0, h_over_b);
+        ok &= line(
+            &format!("H/B = {h_over_b}"),
+            normalised_critical_impulse(delta),
+            printed.value,
+            printed.decimals,
+        );
+    }
+
+    let ex = samples::PIER_EXAMPLE;
+    let mut double_rounded = 0;
+    println!(
+        "\nPier example, 5.3.4: H = {} m, a_g = {} g, t_1 = {} s, g = {} m/s^2 (Eq. 23, 24):",
+        ex.height, ex.pga_g, ex.t1, ex.gravity
+    );
+    for (case, mass, widths) in [
+        ("a (uniform)", MassDistribution::Uniform, ex.uniform),
+        ("b (mass at the top)", MassDistribution::Top, ex.top),
+    ] {
+        let w = pier_width(ex.height, ex.pga_g * ex.gravity, ex.t1, mass, ex.gravity)
+            .expect("valid pier");
+        ok &= line_or_double_rounding(
+            &format!("{case}: B, Eq. 23 [m]"),
+            w.eq23,
+            widths.eq23,
+            &mut double_rounded,
+        );
+        ok &= line(
+            &format!("{case}: B, Eq. 24 [m]"),
+            w.eq24,
+            widths.eq24.value,
+            widths.eq24.decimals,
+        );
+        ok &= line(
+            &format!("{case}: B at rest, a_p = a_p,min [m]"),
+            w.at_rest,
+            widths.at_rest.value,
+            widths.at_rest.decimals,
+        );
+    }
+
     println!("\nAppendix C, two 1 x 4 m blocks of 1 kg, a_g = -1 m/s^2:");
     let column = Column::new(vec![
         Block::rectangle(1.0, 4.0, 1.0),
@@ -170,14 +251,15 @@ pub fn run() -> ExitCode {
         ok &= line(&format!("{label}: p2 [Nm]"), q[1], p2, 3);
     }
 
-    println!(
-        "\n{}",
-        if ok {
-            "all reference values reproduced"
-        } else {
-            "SOME VALUES DO NOT MATCH"
-        }
-    );
+    if !ok {
+        println!("\nSOME VALUES DO NOT MATCH");
+    } else if double_rounded > 0 {
+        println!(
+            "\nall reference values reproduced ({double_rounded} only after double rounding, as marked)"
+        );
+    } else {
+        println!("\nall reference values reproduced");
+    }
     if ok {
         ExitCode::SUCCESS
     } else {

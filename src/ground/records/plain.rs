@@ -92,7 +92,21 @@ pub fn parse_plain(text: &str, name: &str, format: &PlainFormat) -> Result<Recor
             .split(|c: char| c.is_whitespace() || c == ',' || c == ';')
             .filter(|s| !s.is_empty())
         {
-            let v = parse_number(token).ok_or_else(|| bad_value(name, line_no, token))?;
+            let v = parse_number(token).ok_or_else(|| {
+                if values.is_empty() && token.parse::<f64>().is_err() {
+                    // A spreadsheet's CSV starts with its column names.
+                    err(
+                        line_no,
+                        format!(
+                            "`{token}` is not a number: a line of column names? Delete it or \
+                             start it with # (the units are not read from it: m/s² unless \
+                             given)"
+                        ),
+                    )
+                } else {
+                    bad_value(name, line_no, token)
+                }
+            })?;
             if count < 2 {
                 row[count] = v;
             }

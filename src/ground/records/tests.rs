@@ -318,6 +318,33 @@ fn a_byte_order_mark_is_not_part_of_the_first_value() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// A spreadsheet's CSV starts with a line of column names: the error says so, and that the
+/// units are not read from it ("`time` is not a finite number" left the user to guess). A word
+/// after the first data line is still a bad value.
+#[test]
+fn a_line_of_column_names_is_named_as_such() {
+    let format = PlainFormat::default();
+    for text in [
+        "time,acc\n0,1\n0.01,2\n",
+        "# from the table\nt [s]; a [g]\n0;1\n",
+    ] {
+        let e = parse_plain(text, "site", &format).unwrap_err().to_string();
+        assert!(e.contains("column names"), "{e}");
+        assert!(e.contains("start it with #") && e.contains("m/s²"), "{e}");
+    }
+    let e = parse_plain("0 1\n0.01 x\n", "site", &format)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("line 2") && e.contains("`x` is not a finite number"),
+        "{e}"
+    );
+    assert!(!e.contains("column names"), "{e}");
+    // Commented out, the same file reads.
+    let r = parse_plain("# time,acc\n0,1\n0.01,2\n", "site", &format).unwrap();
+    assert_eq!(r.samples, vec![1.0, 2.0]);
+}
+
 #[test]
 fn fortran_format() {
     assert_eq!(fortran_e(-1.607847e-4), "-1.6078470E-04");
