@@ -19,7 +19,9 @@ use plotters::style::FontStyle;
 
 mod axis;
 mod markers;
+pub mod palette;
 use axis::Axis;
+pub use palette::{member_color, member_name};
 
 /// A colour (red, green, blue).
 pub type Rgb = (u8, u8, u8);
