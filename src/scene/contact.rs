@@ -149,7 +149,21 @@ pub(super) fn drum_options(spec: &SceneSpec, column: &Column) -> Result<DrumOpti
     let (friction, joint_friction) = match &spec.friction {
         None => (DrumOptions::default().friction, None),
         Some(FrictionSpec::All(mu)) => (*mu, None),
-        Some(FrictionSpec::PerJoint(mu)) => (DrumOptions::default().friction, Some(mu.clone())),
+        Some(FrictionSpec::PerJoint(mu)) => {
+            // The count, which the options' check does not give ("needs one value per joint").
+            let joints = column.n_interfaces();
+            if mu.len() != joints {
+                return Err(err(
+                    "friction",
+                    format!(
+                        "{mu:?}: {} values for {joints} joints (one per drum, bottom to top: \
+                         joint 0 under drum 0, on the ground)",
+                        mu.len()
+                    ),
+                ));
+            }
+            (DrumOptions::default().friction, Some(mu.clone()))
+        }
     };
     let options = DrumOptions {
         dt: spec.dt,
@@ -252,6 +266,22 @@ mod tests {
             (OnSliding::Stop, OnTension::Stop)
         );
         assert_eq!(c.friction, 0.4);
+    }
+
+    /// A list of the wrong length says how many values the column needs (it said "needs one
+    /// value per joint", and the user had to count the joints, the ground one included).
+    #[test]
+    fn a_friction_list_of_the_wrong_length_gives_the_count() {
+        for (list, given) in [("[0.5]", 1), ("[0.5, 0.6, 0.7]", 3), ("[]", 0)] {
+            let extra = format!(r#", "on_sliding": "slide", "friction": {list}"#);
+            let e = parse(&extra).err().expect("accepted");
+            assert!(
+                e.0.starts_with("friction: ")
+                    && e.0.contains(&format!("{given} values for 2 joints")),
+                "{list}: {}",
+                e.0
+            );
+        }
     }
 
     #[test]
