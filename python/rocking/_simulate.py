@@ -132,6 +132,20 @@ class ContactSimulation(_ColumnRun):
         """Each joint's largest absolute slip (m)."""
         return np.asarray(self.summary["peak_slip"])
 
+    def plot(self, ax=None, events=True):
+        """Drum rotations against time with the impacts, lift-offs, landings and the overturning
+        marked (matplotlib; as ``rocking simulate --plot FILE``). Returns the axes."""
+        from . import plot
+
+        return plot.contact_simulation(self, ax=ax, events=events)
+
+    def plot_slips(self, ax=None, events=True):
+        """The joints' slips (mm) against time with the slip starts and stops marked (as the
+        ``FILE_slips`` of ``rocking simulate --plot FILE``). Returns the axes."""
+        from . import plot
+
+        return plot.contact_slips(self, ax=ax, events=events)
+
 
 class LoopSimulation(_Run):
     """The result of :func:`simulate` for a closed chain (an ``"arch"`` or ``"colonnade"`` scene,
