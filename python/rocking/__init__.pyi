@@ -83,9 +83,9 @@ class ContactSimulation:
     t: Float64Array
     """Times (s), ``(samples,)``."""
     x: Float64Array
-    """Drum centres' horizontal displacement from the first sample (m), ``(samples, n)``."""
+    """Drum centres' horizontal displacement from its place in the straight column at rest (m), ``(samples, n)``."""
     y: Float64Array
-    """Drum centres' vertical displacement from the first sample (m), ``(samples, n)``."""
+    """Drum centres' vertical displacement from its place in the straight column at rest (m), ``(samples, n)``."""
     block_rotations: Float64Array
     """Drum rotations (rad), ``(samples, n)``."""
     slips: Float64Array

@@ -106,7 +106,8 @@ class ContactSimulation(_ColumnRun):
     ``(samples, n)`` but ``t``:
 
     - ``t`` (s), shape ``(samples,)``;
-    - ``x``, ``y``: each drum's centre, displacement from the first sample (m);
+    - ``x``, ``y``: each drum's centre, displacement from its place in the straight column
+      at rest (m; ``summary["peak_top_displacement"]`` is the top's largest |x|);
     - ``block_rotations``: each drum's rotation (rad, counter-clockwise positive);
     - ``slips``: each joint's slip (m, + when the upper face moved to +x).
 

@@ -153,7 +153,7 @@ fn contact_run<'py>(
         .history
         .as_ref()
         .filter(|_| scene.output.history)
-        .map(ContactHistoryColumns::of)
+        .map(|h| ContactHistoryColumns::of(h, &scene.column))
         .unwrap_or(ContactHistoryColumns {
             n: scene.column.n_interfaces(),
             ..ContactHistoryColumns::default()

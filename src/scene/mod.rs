@@ -36,7 +36,8 @@ use crate::contact::simulation::DrumOptions;
 pub use closed::{LoopScene, LoopShape};
 pub use contact::{FrictionSpec, SchemeChoice};
 pub use contact_outputs::{
-    contact_events, mode_name, stop_name, ContactEnergy, ContactHistoryColumns, ContactSummary,
+    contact_events, mode_name, rest, stop_name, ContactEnergy, ContactHistoryColumns,
+    ContactSummary,
 };
 use excitation::excitation;
 pub use excitation::ExcitationSpec;

@@ -60,7 +60,8 @@ pub fn run(
 
     if scene.output.history {
         if let Some(h) = &outcome.history {
-            write_atomic_with(&out.join("history.csv"), |w| write_history_csv(w, h))?;
+            let rest = rocking::scene::rest(&scene.column);
+            write_atomic_with(&out.join("history.csv"), |w| write_history_csv(w, h, &rest))?;
         }
     }
     if scene.output.events {
@@ -105,9 +106,14 @@ pub fn slips_path(p: &Path) -> PathBuf {
     p.with_file_name(format!("{stem}_slips.{ext}"))
 }
 
-/// The history as CSV: per drum `x_k`, `y_k` (its centre's displacement from rest, m) and
-/// `block_rotation_k` (rad, positive counter-clockwise as the driver's), per joint `slip_k` (m).
-pub fn write_history_csv<W: Write>(w: &mut W, h: &DrumHistory) -> std::io::Result<()> {
+/// The history as CSV: per drum `x_k`, `y_k` (its centre's displacement from `rest`, the
+/// straight column at rest, m) and `block_rotation_k` (rad, positive counter-clockwise as the
+/// driver's), per joint `slip_k` (m).
+pub fn write_history_csv<W: Write>(
+    w: &mut W,
+    h: &DrumHistory,
+    rest: &[f64],
+) -> std::io::Result<()> {
     let n = h.n;
     w.write_all(b"t")?;
     for name in ["x", "y", "block_rotation", "slip"] {
@@ -119,7 +125,7 @@ pub fn write_history_csv<W: Write>(w: &mut W, h: &DrumHistory) -> std::io::Resul
     // A block of rows at a time: the columns of the whole history are not copied at once.
     const BLOCK: usize = 4096;
     for start in (0..h.t.len()).step_by(BLOCK) {
-        let c = ContactHistoryColumns::of_rows(h, start..h.t.len().min(start + BLOCK));
+        let c = ContactHistoryColumns::of_rows(h, start..h.t.len().min(start + BLOCK), rest);
         for i in 0..c.len() {
             write!(w, "{}", c.t[i])?;
             for column in [&c.x, &c.y, &c.block_rotation, &c.slip] {
