@@ -45,6 +45,12 @@ pub fn run(a: &SimulateArgs) -> Result<(), String> {
     if plot.is_some() && !history {
         return Err("--plot needs the history (output.history must be true)".into());
     }
+    // Before the run too: an --out that is a file or cannot be created, an unwritable --plot
+    // failed after it (a thirty-drum run of 7 s; a drum column through a whole record, minutes).
+    crate::output::check_writable("--out", &out.join("summary.json"))?;
+    if let Some(p) = plot {
+        crate::output::check_writable("--plot", p)?;
+    }
     let scene = match any {
         scene::AnyScene::Column(scene) => scene,
         scene::AnyScene::Loop(scene) => {
