@@ -16,7 +16,7 @@ use rocking::driver::{self, EventKind, Outcome, StopReason};
 use rocking::ground::FnMotion;
 
 use crate::output::{json_tree, write_atomic, write_atomic_with};
-use crate::plot::{Chart, Marker, Series, Style, COLORS};
+use crate::plot::{member_color, member_name, Chart, Marker, Series, Style, COLORS};
 use crate::progress;
 use rocking::scene::{self, Scene, Summary};
 
@@ -200,13 +200,14 @@ fn chart(scene: &Scene, o: &Outcome) -> Result<Chart, String> {
         ..Chart::default()
     };
     for k in 0..n {
+        // Beyond eight blocks a sequence base to top, seven named (the palette repeated).
         chart.series.push(Series {
-            name: format!("block {k}"),
+            name: member_name("block", k, n),
             points: (0..h.len())
                 .map(|i| (h.t[i], h.block_angles_at(i)[k]))
                 .collect(),
             style: Style::Line,
-            color: COLORS[k % COLORS.len()],
+            color: member_color(k, n),
         });
     }
     for e in &o.events {
@@ -223,4 +224,36 @@ fn chart(scene: &Scene, o: &Outcome) -> Result<Chart, String> {
         });
     }
     Ok(chart)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A column of twelve drums on the event-driven driver: twelve colours (the palette
+    /// repeated every eight) and seven named in the legend; the event kinds keep their colours.
+    #[test]
+    fn a_tall_column_chart_tells_its_blocks_apart() {
+        let blocks = [r#"{"width": 1, "height": 1, "mass": 2500}"#; 12].join(",");
+        let text = format!(
+            r#"{{"blocks": [{blocks}], "duration": 1.0, "dt": 0.001,
+                "excitation": {{"type": "half_sine", "amplitude": 6.0, "duration": 0.5}}}}"#
+        );
+        let spec = rocking::scene::parse(&text).unwrap();
+        let scene = scene::build(spec, std::path::Path::new("."), "test").unwrap();
+        let e = &scene.excitation;
+        let motion = FnMotion(|t| e.acceleration(t), e.end_time());
+        let o = driver::simulate(&scene.column, &motion, &scene.options, None).unwrap();
+        let c = chart(&scene, &o).unwrap();
+        let mut colors: Vec<_> = c.series.iter().map(|s| s.color).collect();
+        colors.sort_unstable();
+        colors.dedup();
+        assert_eq!(colors.len(), 12);
+        let named = c.series.iter().filter(|s| !s.name.is_empty()).count();
+        assert_eq!(named, crate::plot::palette::MAX_NAMED);
+        assert!(c
+            .markers
+            .iter()
+            .all(|m| m.kind != "impact" || m.color == COLORS[1]));
+    }
 }
