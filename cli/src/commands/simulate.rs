@@ -28,7 +28,9 @@ pub struct SimulateArgs {
     /// Output directory (created if needed).
     #[arg(long)]
     pub out: PathBuf,
-    /// Draw block rotations against time with the events marked (.svg or .png).
+    /// Draw block rotations against time with the events marked (.svg or .png); a drum scene
+    /// on the contact scheme also draws the joints' slips (mm) in FILE_slips.svg|png, an arch
+    /// or colonnade its joint angles.
     #[arg(long, value_parser = crate::plot::plot_path)]
     pub plot: Option<PathBuf>,
 }
