@@ -405,7 +405,10 @@ pub fn build(spec: SceneSpec, base: &Path, name: &str) -> Result<Scene, SceneErr
                 "history_every" => "output.every",
                 f => f,
             };
-            err(field, format!("{}: {}", v.value, v.rule))
+            err(
+                field,
+                format!("{}: {}", v.value, contact::scene_rule(field, v.rule)),
+            )
         }
         crate::driver::DriverError::Model(e) => {
             let field = if e.kind == crate::ErrorKind::InvalidOptions {
