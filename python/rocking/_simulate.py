@@ -242,8 +242,8 @@ def simulate(scene, base=None):
     and joint slips); a closed chain (``"arch"`` or ``"colonnade"`` in place of ``blocks``)
     runs the loop driver and returns a :class:`LoopSimulation` (joint angles, hinges).
 
-    The simulation runs without the GIL (other Python threads go on) but cannot be interrupted
-    midway. Returns a :class:`Simulation` (or :class:`ContactSimulation`, :class:`LoopSimulation`); an invalid scene raises
+    The simulation runs without the GIL (other Python threads go on); Ctrl-C interrupts a
+    column's run midway (``KeyboardInterrupt``; a loop's runs to its end). Returns a :class:`Simulation` (or :class:`ContactSimulation`, :class:`LoopSimulation`); an invalid scene raises
     :class:`rocking.RockingError` naming the field.
     """
     if isinstance(scene, (str, os.PathLike)):
