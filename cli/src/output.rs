@@ -21,6 +21,53 @@ pub fn check_writable(flag: &str, path: &Path) -> Result<(), String> {
     Ok(())
 }
 
+/// Checks, before a run, that `path` (`flag`: the argument that named it) can be written, a
+/// file, or with `folder` a folder to write into, without creating anything: a run that fails
+/// leaves no empty folder behind. The nearest existing folder on its way must take a file.
+pub fn check_creatable(flag: &str, path: &Path, folder: bool) -> Result<(), String> {
+    if path.is_dir() != folder && path.exists() {
+        let what = if folder {
+            "a file, not a folder"
+        } else {
+            "a folder, not a file"
+        };
+        return Err(format!("{flag} {}: is {what}", path.display()));
+    }
+    let start = if folder && path.is_dir() {
+        path
+    } else {
+        path.parent().unwrap_or(Path::new("."))
+    };
+    let mut dir = if start.as_os_str().is_empty() {
+        Path::new(".")
+    } else {
+        start
+    };
+    while !dir.exists() {
+        dir = match dir.parent() {
+            Some(p) if !p.as_os_str().is_empty() => p,
+            _ => Path::new("."),
+        };
+    }
+    if !dir.is_dir() {
+        return Err(format!(
+            "{flag} {}: {} is a file, not a folder",
+            path.display(),
+            dir.display()
+        ));
+    }
+    let probe = dir.join(format!(".rocking-probe-{}", std::process::id()));
+    std::fs::write(&probe, b"").map_err(|e| {
+        format!(
+            "{flag} {}: cannot write in {}: {e}",
+            path.display(),
+            dir.display()
+        )
+    })?;
+    let _ = std::fs::remove_file(&probe);
+    Ok(())
+}
+
 /// Removes the `history.csv` and `events.jsonl` of an earlier run from `out` when this run
 /// writes none (`output.history` / `output.events` false), after it succeeded: a folder with
 /// an old run's events beside this run's summary contradicted itself.

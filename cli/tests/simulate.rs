@@ -205,8 +205,13 @@ fn an_unwritable_out_or_plot_is_refused_before_the_run() {
         assert!(!run.ok, "{out:?} {plot:?} accepted");
         assert!(run.stderr.contains(flag), "{flag}: {}", run.stderr);
         assert!(run.stdout.is_empty(), "it ran: {}", run.stdout);
-        assert!(!dir.join("out/summary.json").exists(), "outputs written");
+        assert!(!dir.join("out").exists(), "outputs written");
     }
+    // Nothing created for the check: a run that then fails leaves no folder behind.
+    let deep = dir.join("a/b/out");
+    let run = simulate(&scene, &deep, Some(&dir.join("c/d/plot.svg")));
+    assert!(run.ok, "{}", run.stderr);
+    assert!(deep.join("summary.json").exists() && dir.join("c/d/plot_slips.svg").exists());
 }
 
 #[test]

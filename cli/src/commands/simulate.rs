@@ -49,9 +49,9 @@ pub fn run(a: &SimulateArgs) -> Result<(), String> {
     }
     // Before the run too: an --out that is a file or cannot be created, an unwritable --plot
     // failed after it (a thirty-drum run of 7 s; a drum column through a whole record, minutes).
-    crate::output::check_writable("--out", &out.join("summary.json"))?;
+    crate::output::check_creatable("--out", out, true)?;
     if let Some(p) = plot {
-        crate::output::check_writable("--plot", p)?;
+        crate::output::check_creatable("--plot", p, false)?;
     }
     let scene = match any {
         scene::AnyScene::Column(scene) => scene,
