@@ -91,12 +91,22 @@ pub fn run(
         outcome.event_counts[1],
         outcome.event_counts[2],
         outcome.event_counts[4],
-        outcome.peak_rotation.iter().map(|v| (v * 1e4).round() / 1e4).collect::<Vec<_>>(),
-        outcome.residual_slip.iter().map(|v| (v * 1e4).round() / 10.0).collect::<Vec<_>>(),
+        rounded(&outcome.peak_rotation, 1.0, 4),
+        rounded(&outcome.residual_slip, 1e3, 1),
         wall,
         out.display()
     );
     Ok(())
+}
+
+/// `values × scale` to `digits` decimals, for the console; a value that rounds to zero is 0,
+/// not -0 (a residual slip of -2e-6 m printed as -0.0 mm).
+fn rounded(values: &[f64], scale: f64, digits: i32) -> Vec<f64> {
+    let f = 10f64.powi(digits);
+    values
+        .iter()
+        .map(|v| (v * scale * f).round() / f + 0.0)
+        .collect()
 }
 
 /// `plot.svg` → `plot_slips.svg`.
@@ -249,6 +259,13 @@ mod tests {
         let motion = FnMotion(|t| e.acceleration(t), e.end_time());
         let outcome = simulation::simulate(&scene.column, &motion, options, None).unwrap();
         (scene, outcome)
+    }
+
+    #[test]
+    fn console_values_round_without_negative_zeros() {
+        let text = format!("{:?}", rounded(&[-2e-6, 0.00446, -0.0155388], 1e3, 1));
+        assert_eq!(text, "[0.0, 4.5, -15.5]");
+        assert_eq!(rounded(&[0.059965, -0.00004], 1.0, 4), [0.06, 0.0]);
     }
 
     /// Each kind of marker its own colour on each chart.
