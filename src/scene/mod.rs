@@ -426,6 +426,19 @@ pub fn build(spec: SceneSpec, base: &Path, name: &str) -> Result<Scene, SceneErr
             err(field, e)
         }
     })?;
+    // Before the run: it failed at the first opening with "model error: enumeration refused",
+    // the field not named (a thirty-drum column with "solver": "enumerate").
+    let limit = options.physics.model.max_enumerated_closed;
+    if solver == Solver::Enumerate && column.n_interfaces() > limit {
+        return Err(err(
+            "solver",
+            format!(
+                "\"enumerate\" takes at most {limit} closed joints and the column has {}: \
+                 \"projection\" or \"auto\"",
+                column.n_interfaces()
+            ),
+        ));
+    }
     excitation::check_step_resolves(&excitation, spec.dt)?;
     spec.output.check_samples(spec.duration, spec.dt)?;
     Ok(Scene {

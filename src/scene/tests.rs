@@ -197,3 +197,27 @@ fn oversized_and_out_of_range_shapes_are_named() {
     }
     assert!(load(&arch(r#""voussoirs": 8, "embrace_angle": 359"#)).is_ok());
 }
+
+/// The enumeration solver on a column taller than its limit is refused naming `solver`, on the
+/// event-driven driver and in the driver's parts of scheme "auto" (both failed at the first
+/// opening: "model error: enumeration refused"); at the limit it is taken.
+#[test]
+fn the_enumeration_on_too_many_joints_is_named() {
+    let limit = ModelOptions::default().max_enumerated_closed;
+    let column = |n: usize, extra: &str| {
+        let blocks = vec![r#"{"width": 1, "height": 1, "mass": 2500}"#; n].join(",");
+        format!(
+            r#"{{"blocks": [{blocks}], "excitation": {{"type": "none"}},
+                "duration": 0.01, "dt": 0.001, "solver": "enumerate"{extra}}}"#
+        )
+    };
+    assert!(parse(&column(limit, "")).is_ok());
+    for extra in ["", r#", "scheme": "auto", "on_sliding": "slide""#] {
+        let e = parse(&column(limit + 1, extra)).err().expect("accepted");
+        assert!(
+            e.0.starts_with("solver: ") && e.0.contains(&format!("has {}", limit + 1)),
+            "{extra}: {}",
+            e.0
+        );
+    }
+}
