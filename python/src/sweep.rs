@@ -157,21 +157,30 @@ where
         std::thread::scope(|s| {
             let (tx, rx) = mpsc::channel::<()>();
             let cancel = &cancel;
-            let worker = s.spawn(move || {
-                let mut progress = |_: f64| {
-                    if cancel.load(Ordering::Relaxed) {
-                        // Not a panic: no hook runs, nothing is printed.
-                        std::panic::resume_unwind(Box::new(Interrupted));
-                    }
-                };
-                let started = std::time::Instant::now();
-                let r =
-                    std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| work(&mut progress)));
-                let wall = started.elapsed().as_secs_f64();
-                // The receiver lives until the join below.
-                let _ = tx.send(());
-                r.map(|t| (t, wall))
-            });
+            // The stack of a main thread (8 MiB), where the run went before, not a spawned
+            // thread's 2 MiB.
+            let worker = std::thread::Builder::new()
+                .stack_size(8 << 20)
+                .spawn_scoped(s, move || {
+                    let mut progress = |_: f64| {
+                        if cancel.load(Ordering::Relaxed) {
+                            // Not a panic: no hook runs, nothing is printed.
+                            std::panic::resume_unwind(Box::new(Interrupted));
+                        }
+                    };
+                    let started = std::time::Instant::now();
+                    let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+                        work(&mut progress)
+                    }));
+                    let wall = started.elapsed().as_secs_f64();
+                    // The receiver lives until the join below.
+                    let _ = tx.send(());
+                    r.map(|t| (t, wall))
+                });
+            let worker = match worker {
+                Ok(w) => w,
+                Err(e) => return Err(value_error(format!("cannot start the run's thread: {e}"))),
+            };
             let mut stopped: Option<PyErr> = None;
             loop {
                 let finished = rx.recv_timeout(POLL).is_ok();
@@ -188,9 +197,9 @@ where
             let result = worker
                 .join()
                 .unwrap_or_else(|p| std::panic::resume_unwind(p));
-            (result, stopped)
+            Ok((result, stopped))
         })
-    });
+    })?;
     match result {
         // A run that finished before the signal was seen: the signal still interrupts.
         Ok(r) => match stopped {
