@@ -25,6 +25,8 @@ fn every_command_has_help() {
         (vec!["design", "width"], "--mass"),
         (vec!["design", "check"], "--exact-icr"),
         (vec!["simulate"], "--plot"),
+        // A drum scene's second chart, written beside the first (the help did not say).
+        (vec!["simulate"], "FILE_slips"),
         (vec!["bench", "accuracy"], "--peer"),
         (vec!["bench", "spectra"], "--compare"),
     ] {

@@ -138,7 +138,8 @@ fn one_drum(extra: &[&str]) -> common::Run {
 }
 
 /// A bad `--pga` or `--mu` (or more drums than a column can have, or a `--dt` of more than 1e10
-/// steps for a record) is refused before any run,
+/// steps for a record or longer than a record's own step, which ran on the ground motion's
+/// samples skipped) is refused before any run,
 /// naming the argument (a NaN, 0 or negative value failed in the middle of the suite, after the
 /// runs of the values before it, as `target = NaN`, `invalid drum option friction` or `5000
 /// blocks: …`).
@@ -154,6 +155,7 @@ fn a_bad_pga_or_mu_is_refused_before_any_run() {
         "--mu=0",
         "--mu=0.5,-1",
         "--dt=1e-300",
+        "--dt=0.05",
     ] {
         let run = one_drum(&[bad]);
         let arg = bad.split('=').next().unwrap();
@@ -196,4 +198,24 @@ fn an_unwritable_output_is_refused_before_any_run() {
         0,
         "a probe was left behind"
     );
+}
+
+/// A value given twice is run once (`--pga 4,4` ran and counted every case twice), and a
+/// missing records folder (the default one on a fresh clone) says what to give.
+#[test]
+fn repeated_values_run_once_and_a_missing_records_folder_says_what_to_give() {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("bench_drums_repeated");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let csv = dir.join("runs.csv");
+    let csv = csv.to_string_lossy();
+    let run = one_drum(&["--pga", "4,4", "--mu", "0.5,0.5", "--csv", &csv]);
+    assert!(run.ok, "{}", run.stderr);
+    let rows = std::fs::read_to_string(dir.join("runs.csv")).unwrap();
+    assert_eq!(rows.lines().count(), 2, "{rows}");
+    let run = common::run(["bench", "drums", "--records", "no/such/folder"]);
+    assert!(!run.ok);
+    for part in ["--records no/such/folder", ".AT2", "examples/records"] {
+        assert!(run.stderr.contains(part), "{part}: {}", run.stderr);
+    }
 }

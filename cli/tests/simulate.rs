@@ -182,6 +182,38 @@ fn a_drum_scene_rocks_slides_and_flies_and_writes_slips() {
         .starts_with("<svg"));
 }
 
+/// An `--out` that is a file or cannot be created, or an unwritable `--plot`, is refused
+/// before the run (it failed after it: the outputs of a long drum run lost, or written and
+/// the command failing at the chart), naming the argument.
+#[test]
+fn an_unwritable_out_or_plot_is_refused_before_the_run() {
+    let dir = fresh_dir("simulate_unwritable");
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("a_file");
+    std::fs::write(&file, "").unwrap();
+    let scene = scenes().join("drums_sliding_column.json");
+    for (out, plot, flag) in [
+        (file.clone(), None, "--out"),
+        (PathBuf::from("/proc/rocking/out"), None, "--out"),
+        (
+            dir.join("out"),
+            Some(PathBuf::from("/proc/rocking/p.svg")),
+            "--plot",
+        ),
+    ] {
+        let run = simulate(&scene, &out, plot.as_deref());
+        assert!(!run.ok, "{out:?} {plot:?} accepted");
+        assert!(run.stderr.contains(flag), "{flag}: {}", run.stderr);
+        assert!(run.stdout.is_empty(), "it ran: {}", run.stdout);
+        assert!(!dir.join("out").exists(), "outputs written");
+    }
+    // Nothing created for the check: a run that then fails leaves no folder behind.
+    let deep = dir.join("a/b/out");
+    let run = simulate(&scene, &deep, Some(&dir.join("c/d/plot.svg")));
+    assert!(run.ok, "{}", run.stderr);
+    assert!(deep.join("summary.json").exists() && dir.join("c/d/plot_slips.svg").exists());
+}
+
 #[test]
 fn an_auto_scene_writes_one_record_with_its_scheme_switches() {
     // The bundled sliding column with `"scheme": "auto"`: the driver until contacts crowd.

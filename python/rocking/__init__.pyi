@@ -83,9 +83,9 @@ class ContactSimulation:
     t: Float64Array
     """Times (s), ``(samples,)``."""
     x: Float64Array
-    """Drum centres' horizontal displacement from the first sample (m), ``(samples, n)``."""
+    """Drum centres' horizontal displacement from its place in the straight column at rest (m), ``(samples, n)``."""
     y: Float64Array
-    """Drum centres' vertical displacement from the first sample (m), ``(samples, n)``."""
+    """Drum centres' vertical displacement from its place in the straight column at rest (m), ``(samples, n)``."""
     block_rotations: Float64Array
     """Drum rotations (rad), ``(samples, n)``."""
     slips: Float64Array
@@ -106,6 +106,7 @@ class ContactSimulation:
     def peak_slip(self) -> Float64Array: ...
     def events_of(self, kind: str) -> List[Dict[str, Any]]: ...
     def plot(self, ax: Any = None, events: bool = True) -> Any: ...
+    def plot_slips(self, ax: Any = None, events: bool = True) -> Any: ...
 
 class LoopSimulation:
     """The result of :func:`simulate` for a closed chain (an arch or a capped colonnade)."""

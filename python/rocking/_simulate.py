@@ -106,7 +106,8 @@ class ContactSimulation(_ColumnRun):
     ``(samples, n)`` but ``t``:
 
     - ``t`` (s), shape ``(samples,)``;
-    - ``x``, ``y``: each drum's centre, displacement from the first sample (m);
+    - ``x``, ``y``: each drum's centre, displacement from its place in the straight column
+      at rest (m; ``summary["peak_top_displacement"]`` is the top's largest |x|);
     - ``block_rotations``: each drum's rotation (rad, counter-clockwise positive);
     - ``slips``: each joint's slip (m, + when the upper face moved to +x).
 
@@ -131,6 +132,20 @@ class ContactSimulation(_ColumnRun):
     def peak_slip(self):
         """Each joint's largest absolute slip (m)."""
         return np.asarray(self.summary["peak_slip"])
+
+    def plot(self, ax=None, events=True):
+        """Drum rotations against time with the impacts, lift-offs, landings and the overturning
+        marked (matplotlib; as ``rocking simulate --plot FILE``). Returns the axes."""
+        from . import plot
+
+        return plot.contact_simulation(self, ax=ax, events=events)
+
+    def plot_slips(self, ax=None, events=True):
+        """The joints' slips (mm) against time with the slip starts and stops marked (as the
+        ``FILE_slips`` of ``rocking simulate --plot FILE``). Returns the axes."""
+        from . import plot
+
+        return plot.contact_slips(self, ax=ax, events=events)
 
 
 class LoopSimulation(_Run):
@@ -227,8 +242,8 @@ def simulate(scene, base=None):
     and joint slips); a closed chain (``"arch"`` or ``"colonnade"`` in place of ``blocks``)
     runs the loop driver and returns a :class:`LoopSimulation` (joint angles, hinges).
 
-    The simulation runs without the GIL (other Python threads go on) but cannot be interrupted
-    midway. Returns a :class:`Simulation` (or :class:`ContactSimulation`, :class:`LoopSimulation`); an invalid scene raises
+    The simulation runs without the GIL (other Python threads go on); Ctrl-C interrupts a
+    column's run midway (``KeyboardInterrupt``; a loop's runs to its end). Returns a :class:`Simulation` (or :class:`ContactSimulation`, :class:`LoopSimulation`); an invalid scene raises
     :class:`rocking.RockingError` naming the field.
     """
     if isinstance(scene, (str, os.PathLike)):

@@ -4,6 +4,9 @@ called. Each draws into ``ax`` (a new figure's axes by default) and returns the 
 
 - :func:`simulation`: block rotations against time with the events marked (as ``rocking
   simulate --plot``);
+- :func:`contact_simulation`, :func:`contact_slips`: the drum rotations and the joints' slips
+  (mm) of a drum column run by the contact scheme (as ``rocking simulate --plot`` draws them in
+  ``FILE`` and ``FILE_slips``);
 - :func:`oas`: an overturning acceleration spectrum against ``p`` (Fig. 36), ``f`` (Fig. 37) or
   the size, with the simplified spectra (as ``rocking oas --svg``);
 - :func:`oc`: an overturning curve (Fig. 33a, as ``rocking oc --svg``);
@@ -42,33 +45,63 @@ EVENT_STYLE = {
     "locked": ("tab:gray", ":"),
     "collapsed": ("black", "-"),
     "slip_start": ("tab:purple", ":"),
+    "slip_stop": ("tab:brown", ":"),
     "lift_off": ("tab:red", ":"),
-    "landing": ("tab:red", "--"),
+    "landing": ("tab:cyan", "--"),
+    "scheme_switch": ("tab:gray", "--"),
 }
+
+#: Beyond this many events they are ticks above the axes, one row per kind, rather than lines
+#: across the data (the 42 000 events of thirty drums hid every curve and took a minute to draw).
+MAX_EVENT_LINES = 100
+#: Height of a row of event ticks, a fraction of the axes' height.
+TICK_ROW = 0.03
+
+#: Beyond this many members (blocks, drums, joints) each takes a shade of viridis, base to top,
+#: and at most :data:`MAX_NAMED` of them are in the legend (the default colours repeat every ten).
+MAX_COLOURED = 8
+MAX_NAMED = 7
+
+
+def _members(ax, t, values, what, scale=1.0, group=False):
+    """One line per column of ``values`` against ``t``, labelled ``what k``; with ``group``,
+    columns equal throughout (blocks rocking as one) are one line, ``whats j, k (as one)``:
+    drawn one over the other, all but the last were hidden behind it."""
+    n = values.shape[1]
+    groups = []
+    for k in range(n):
+        same = [g for g in groups if group and np.array_equal(values[:, g[0]], values[:, k])]
+        if same:
+            same[0].append(k)
+        else:
+            groups.append([k])
+
+    def label(g, named=True):
+        if len(g) > 1:
+            return f"{what}s {', '.join(map(str, g))} (as one)"
+        return f"{what} {g[0]}" if named else None
+
+    if n <= MAX_COLOURED:
+        for g in groups:
+            ax.plot(t, scale * values[:, g[0]], label=label(g))
+        return
+    cmap = _pyplot().get_cmap("viridis")
+    named = {round(i * (n - 1) / (MAX_NAMED - 1)) for i in range(MAX_NAMED)}
+    for g in groups:
+        k = g[0]
+        ax.plot(t, scale * values[:, k], color=cmap(0.9 * k / (n - 1)),
+                label=label(g, k in named))
 
 
 def simulation(result, ax=None, events=True):
     """Block rotations (rad) of a :class:`rocking.Simulation` against time, one line per block,
     and a vertical line at each event (``events``)."""
     ax = _axes(ax)
-    # Blocks with the same rotation throughout (a column rocking as one) are one line with one
-    # legend entry: drawn one over the other, all but the last were hidden behind it.
-    groups = []
-    for k in range(result.block_rotations.shape[1]):
-        column = result.block_rotations[:, k]
-        same = [g for g in groups if np.array_equal(result.block_rotations[:, g[0]], column)]
-        if same:
-            same[0].append(k)
-        else:
-            groups.append([k])
-    for g in groups:
-        label = f"block {g[0]}" if len(g) == 1 else f"blocks {', '.join(map(str, g))} (as one)"
-        ax.plot(result.t, result.block_rotations[:, g[0]], label=label)
-    if events:
-        _event_lines(ax, result.events)
+    _members(ax, result.t, result.block_rotations, "block", group=True)
+    rows = _event_lines(ax, result.events) if events else 0
     ax.set_xlabel("t [s]")
     ax.set_ylabel("block rotation [rad]")
-    ax.set_title(result.title)
+    _title(ax, result.title, rows)
     ax.legend(fontsize="small")
     return ax
 
@@ -80,22 +113,69 @@ def loop_simulation(result, ax=None, events=True):
     for k in range(result.angles.shape[1]):
         if result.angles[:, k].any():
             ax.plot(result.t, result.angles[:, k], label=f"joint {k}")
-    if events:
-        _event_lines(ax, result.events)
+    rows = _event_lines(ax, result.events) if events else 0
     ax.set_xlabel("t [s]")
     ax.set_ylabel("joint angle [rad]")
-    ax.set_title(result.title)
+    _title(ax, result.title, rows)
     ax.legend(fontsize="small")
     return ax
 
 
+def contact_simulation(result, ax=None, events=True):
+    """Drum rotations (rad) of a :class:`rocking.ContactSimulation` against time, one line per
+    drum, and the impacts, lift-offs, landings, scheme switches and the overturning marked
+    (``events``)."""
+    ax = _axes(ax)
+    _members(ax, result.t, result.block_rotations, "drum")
+    kinds = ("impact", "lift_off", "landing", "scheme_switch", "overturned")
+    rows = _event_lines(ax, [e for e in result.events if e["kind"] in kinds]) if events else 0
+    ax.set_xlabel("t [s]")
+    ax.set_ylabel("drum rotation [rad]")
+    _title(ax, result.title, rows)
+    ax.legend(fontsize="small", loc="upper left")
+    return ax
+
+
+def contact_slips(result, ax=None, events=True):
+    """The joints' slips (mm) of a :class:`rocking.ContactSimulation` against time, one line per
+    joint, and the slip starts and stops and the overturning marked (``events``)."""
+    ax = _axes(ax)
+    _members(ax, result.t, result.slips, "joint", scale=1e3)
+    kinds = ("slip_start", "slip_stop", "overturned")
+    rows = _event_lines(ax, [e for e in result.events if e["kind"] in kinds]) if events else 0
+    ax.set_xlabel("t [s]")
+    ax.set_ylabel("joint slip [mm]")
+    _title(ax, result.title, rows)
+    ax.legend(fontsize="small", loc="upper left")
+    return ax
+
+
 def _event_lines(ax, events):
+    """A vertical line at each event; beyond :data:`MAX_EVENT_LINES`, a tick above the axes at
+    each, one row per kind, its legend entry with the count."""
+    if len(events) > MAX_EVENT_LINES:
+        kinds = {}
+        for e in events:
+            kinds.setdefault(e["kind"], []).append(e["t"])
+        for row, (kind, times) in enumerate(kinds.items()):
+            colour, _ = EVENT_STYLE.get(kind, ("black", "-"))
+            ax.plot(times, np.full(len(times), 1.0 + TICK_ROW * (row + 0.5)), "|", color=colour,
+                    markersize=5, transform=ax.get_xaxis_transform(), clip_on=False,
+                    label=f"{kind} ({len(times)}, ticks above)")
+        return len(kinds)
     seen = set()
     for e in events:
         colour, style = EVENT_STYLE.get(e["kind"], ("black", "-"))
         label = e["kind"] if e["kind"] not in seen else None
         seen.add(e["kind"])
         ax.axvline(e["t"], color=colour, linestyle=style, linewidth=0.8, label=label)
+    return 0
+
+
+def _title(ax, title, rows):
+    """The title, above the ``rows`` rows of event ticks if any."""
+    height = ax.bbox.height * 72.0 / ax.figure.dpi  # the axes' height in points
+    ax.set_title(title, pad=6.0 + rows * TICK_ROW * height)
 
 
 def oas(result, against="p", ax=None, fits=True):

@@ -24,6 +24,7 @@ use rocking::scene::{
 use crate::errors::value_error;
 use crate::ground::Record;
 use crate::json::to_python;
+use crate::sweep::interruptible;
 
 /// `message` without serde's trailing ` at line L column C`.
 fn without_position(message: &str) -> &str {
@@ -93,13 +94,11 @@ pub fn _simulate<'py>(
     if scene.contact.is_some() {
         return contact_run(py, &scene, scene_name);
     }
-    let (outcome, wall) = py.detach(|| {
+    let (outcome, wall) = interruptible(py, |progress| {
         let excitation = &scene.excitation;
         let motion = FnMotion(|t| excitation.acceleration(t), excitation.end_time());
-        let started = Instant::now();
-        let outcome = driver::simulate(&scene.column, &motion, &scene.options, None);
-        (outcome, started.elapsed().as_secs_f64())
-    });
+        driver::simulate(&scene.column, &motion, &scene.options, Some(progress))
+    })?;
     let outcome = outcome.map_err(|e| value_error(e.to_string()))?;
 
     let d = PyDict::new(py);
@@ -133,27 +132,30 @@ fn contact_run<'py>(
     scene_name: Option<String>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let options = scene.contact.as_ref().expect("a contact-scheme scene");
-    let (outcome, wall) = py.detach(|| {
+    let (outcome, wall) = interruptible(py, |progress| {
         let excitation = &scene.excitation;
         let motion = FnMotion(|t| excitation.acceleration(t), excitation.end_time());
-        let started = Instant::now();
-        let outcome = match &scene.auto {
-            Some(rules) => {
-                auto::simulate(&scene.column, &motion, &scene.options, options, rules, None)
-                    .map_err(|e| e.to_string())
-            }
-            None => simulation::simulate(&scene.column, &motion, options, None)
+        match &scene.auto {
+            Some(rules) => auto::simulate(
+                &scene.column,
+                &motion,
+                &scene.options,
+                options,
+                rules,
+                Some(progress),
+            )
+            .map_err(|e| e.to_string()),
+            None => simulation::simulate(&scene.column, &motion, options, Some(progress))
                 .map_err(|e| e.to_string()),
-        };
-        (outcome, started.elapsed().as_secs_f64())
-    });
+        }
+    })?;
     let outcome = outcome.map_err(value_error)?;
     let d = PyDict::new(py);
     let columns = outcome
         .history
         .as_ref()
         .filter(|_| scene.output.history)
-        .map(ContactHistoryColumns::of)
+        .map(|h| ContactHistoryColumns::of(h, &scene.column))
         .unwrap_or(ContactHistoryColumns {
             n: scene.column.n_interfaces(),
             ..ContactHistoryColumns::default()

@@ -138,3 +138,78 @@ impl Runner {
         Ok(())
     }
 }
+
+/// What the progress callback of an [`interruptible`] run unwinds with after Ctrl-C.
+struct Interrupted;
+
+/// Runs `work` on a thread of its own with the GIL released, handing it a progress callback;
+/// this thread takes the GIL back every [`POLL`] to check for signals. On Ctrl-C the callback
+/// unwinds the run at its next report (the simulations report every 1 % of their steps) and
+/// the `KeyboardInterrupt` is raised: a drum column through a whole record takes seconds to
+/// minutes, and Ctrl-C waited for its end. Returns what `work` returned and its wall time (s).
+pub fn interruptible<T, F>(py: Python<'_>, work: F) -> PyResult<(T, f64)>
+where
+    T: Send,
+    F: FnOnce(&mut dyn FnMut(f64)) -> T + Send,
+{
+    let cancel = AtomicBool::new(false);
+    let (result, stopped) = py.detach(|| {
+        std::thread::scope(|s| {
+            let (tx, rx) = mpsc::channel::<()>();
+            let cancel = &cancel;
+            // The stack of a main thread (8 MiB), where the run went before, not a spawned
+            // thread's 2 MiB.
+            let worker = std::thread::Builder::new()
+                .stack_size(8 << 20)
+                .spawn_scoped(s, move || {
+                    let mut progress = |_: f64| {
+                        if cancel.load(Ordering::Relaxed) {
+                            // Not a panic: no hook runs, nothing is printed.
+                            std::panic::resume_unwind(Box::new(Interrupted));
+                        }
+                    };
+                    let started = std::time::Instant::now();
+                    let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+                        work(&mut progress)
+                    }));
+                    let wall = started.elapsed().as_secs_f64();
+                    // The receiver lives until the join below.
+                    let _ = tx.send(());
+                    r.map(|t| (t, wall))
+                });
+            let worker = match worker {
+                Ok(w) => w,
+                Err(e) => return Err(value_error(format!("cannot start the run's thread: {e}"))),
+            };
+            let mut stopped: Option<PyErr> = None;
+            loop {
+                let finished = rx.recv_timeout(POLL).is_ok();
+                if stopped.is_none() {
+                    stopped = Python::attach(|py| py.check_signals()).err();
+                    if stopped.is_some() {
+                        cancel.store(true, Ordering::Relaxed);
+                    }
+                }
+                if finished {
+                    break;
+                }
+            }
+            let result = worker
+                .join()
+                .unwrap_or_else(|p| std::panic::resume_unwind(p));
+            Ok((result, stopped))
+        })
+    })?;
+    match result {
+        // A run that finished before the signal was seen: the signal still interrupts.
+        Ok(r) => match stopped {
+            Some(e) => Err(e),
+            None => Ok(r),
+        },
+        Err(payload) if payload.is::<Interrupted>() => {
+            Err(stopped.expect("interrupted only after a signal"))
+        }
+        // A panic in the library is a bug: pass it on (pyo3 turns it into `PanicException`).
+        Err(payload) => std::panic::resume_unwind(payload),
+    }
+}

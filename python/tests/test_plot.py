@@ -53,6 +53,49 @@ def test_loop_and_contact_plots(plt, root):
     np.testing.assert_array_equal(ax.get_lines()[2].get_ydata(), drums.block_rotations[:, 2])
 
 
+def _drums(n, amplitude, duration):
+    return rocking.simulate({
+        "blocks": [{"width": 1.0, "height": 1.0, "mass": 2500}] * n, "friction": 0.5, "impacts": 2,
+        "on_sliding": "slide", "on_tension": "fly", "duration": duration, "dt": 0.001,
+        "excitation": {"type": "full_sine", "amplitude": amplitude, "duration": 1.0}})
+
+
+def test_contact_plots_show_drums_slips_and_every_event_kind(plt):
+    """A drum column's plot names drums, its slips plot draws the slips in mm, each kind of event
+    has a style of its own (slip stops were black solid lines, as an overturning), the
+    overturning is marked on both; many events are ticks above the axes (42 000 lines took a
+    minute and hid the curves), and ten drums are ten colours with seven in the legend."""
+    from rocking import plot
+
+    drum_kinds = ["opening", "impact", "slip_start", "slip_stop", "lift_off", "landing",
+                  "scheme_switch", "overturned"]
+    styles = [plot.EVENT_STYLE[k] for k in drum_kinds]
+    assert len(set(styles)) == len(styles), "two kinds drawn alike"
+    d = _drums(3, 8.0, 2.0)
+    assert d.overturned and 0 < len(d.events) <= plot.MAX_EVENT_LINES
+    _, (a, b) = plt.subplots(2)
+    d.plot(ax=a)
+    d.plot_slips(ax=b)
+    assert a.get_ylabel() == "drum rotation [rad]" and b.get_ylabel() == "joint slip [mm]"
+    labels = [h.get_label() for h in a.get_legend().legend_handles]
+    assert labels[:3] == ["drum 0", "drum 1", "drum 2"] and "overturned" in labels
+    np.testing.assert_array_equal(b.get_lines()[1].get_ydata(), 1e3 * d.slips[:, 1])
+    slip_labels = [h.get_label() for h in b.get_legend().legend_handles]
+    assert {"slip_start", "slip_stop", "overturned"} <= set(slip_labels), slip_labels
+
+    many = _drums(10, 5.0, 3.0)
+    assert len(many.events_of("impact")) > plot.MAX_EVENT_LINES
+    ax = many.plot()
+    lines = ax.get_lines()
+    kinds = {e["kind"] for e in many.events} & {"impact", "lift_off", "landing"}
+    assert len(lines) == 10 + len(kinds)
+    assert f"impact ({len(many.events_of('impact'))}, ticks above)" in [l.get_label() for l in lines]
+    colours = {tuple(l.get_color()) for l in lines[:10]}
+    assert len(colours) == 10
+    named = [l for l in lines[:10] if not l.get_label().startswith("_")]
+    assert len(named) == plot.MAX_NAMED
+
+
 def test_oas_plots(plt, root):
     o = rocking.oas(root / "examples/records/synthetic.AT2", levels=16, sizes=40)
     for against, x in [("p", o.p), ("f", o.f), ("size", o.size)]:

@@ -328,3 +328,39 @@ def test_a_scene_file_saved_with_a_byte_order_mark(root, tmp_path):
     from rocking import opensees
 
     assert opensees.load_scene(tmp_path / "marked.json")[0] == json.loads(text)
+
+
+@pytest.mark.parametrize("scheme", ["moreau", "auto"])
+def test_ctrl_c_stops_a_long_run_promptly(root, scheme):
+    """Ctrl-C (here ``_thread.interrupt_main`` from another thread) interrupts a run midway with
+    KeyboardInterrupt: thirty drums through the synthetic record take tens of seconds, and Ctrl-C
+    waited for the end (the GIL released, the signal was seen only when the run returned)."""
+    import _thread
+    import threading
+    import time
+
+    scene = {"blocks": [{"width": 1.0, "height": 1.0, "mass": 2500}] * 30, "impacts": 2,
+             "excitation": {"type": "record", "path": "examples/records/synthetic.AT2",
+                            "scale_to_pga": 4.0},
+             "duration": 20.0, "dt": 0.001, "scheme": scheme, "friction": 0.6,
+             "on_sliding": "slide", "on_tension": "fly"}
+    sent = []
+
+    def interrupter():
+        time.sleep(0.5)
+        sent.append(time.monotonic())
+        _thread.interrupt_main()
+
+    t = threading.Thread(target=interrupter)
+    t.start()
+    started = time.monotonic()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            rocking.simulate(scene, base=root)
+            for _ in range(600):  # a run that ended before the signal: wait for it here
+                time.sleep(0.1)
+        returned = time.monotonic()
+    finally:
+        t.join()
+    assert sent and returned - sent[0] < 5.0, f"{returned - sent[0]:.1f} s after the signal"
+    assert returned - started < 10.0

@@ -115,14 +115,17 @@ impl MoreauRun {
         modes(&st, &mut mode, &mut slipping);
         let next_mode = mode.clone();
         let next_slipping = slipping.clone();
+        // The peaks count the start: a column released from its initial angles has its largest
+        // rotation there (they were taken after each step only, 0.09999974 of a 0.1 release).
+        let q = &st.q;
         let out = DrumOutcome {
             stop: DrumStop::Duration,
             t_end: 0.0,
             overturned: false,
-            peak_rotation: vec![0.0; n],
+            peak_rotation: (0..n).map(|j| q[3 * j + 2].abs()).collect(),
             peak_slip: vec![0.0; n],
             residual_slip: vec![0.0; n],
-            peak_top_displacement: 0.0,
+            peak_top_displacement: q[3 * (n - 1)].abs(),
             energy: DrumEnergy::default(),
             event_counts: [0; 7],
             events: Vec::new(),

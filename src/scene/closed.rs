@@ -287,7 +287,7 @@ pub(super) fn build(
         ..defaults
     };
     Ok(LoopScene {
-        title: spec.title.unwrap_or_else(|| name.to_string()),
+        title: super::title(spec.title, name),
         shape,
         chain,
         excitation,

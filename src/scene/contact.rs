@@ -144,12 +144,37 @@ pub(super) fn driver_friction(spec: &SceneSpec, default: f64) -> f64 {
     }
 }
 
+/// An option's rule as a scene reads it: the options say that an infinite μ means no sliding,
+/// which a scene cannot write (JSON has no infinity): it takes a large one.
+pub(super) fn scene_rule(field: &str, rule: &str) -> String {
+    if field == "friction" && rule.contains("infinity") {
+        return "must be > 0 (no sliding: a large value such as 1e9; a frictionless joint, \
+                μ = 0, is not modelled)"
+            .into();
+    }
+    rule.to_string()
+}
+
 /// The options of the contact scheme for a scene that chose it.
 pub(super) fn drum_options(spec: &SceneSpec, column: &Column) -> Result<DrumOptions, SceneError> {
     let (friction, joint_friction) = match &spec.friction {
         None => (DrumOptions::default().friction, None),
         Some(FrictionSpec::All(mu)) => (*mu, None),
-        Some(FrictionSpec::PerJoint(mu)) => (DrumOptions::default().friction, Some(mu.clone())),
+        Some(FrictionSpec::PerJoint(mu)) => {
+            // The count, which the options' check does not give ("needs one value per joint").
+            let joints = column.n_interfaces();
+            if mu.len() != joints {
+                return Err(err(
+                    "friction",
+                    format!(
+                        "{mu:?}: {} values for {joints} joints (one per drum, bottom to top: \
+                         joint 0 under drum 0, on the ground)",
+                        mu.len()
+                    ),
+                ));
+            }
+            (DrumOptions::default().friction, Some(mu.clone()))
+        }
     };
     let options = DrumOptions {
         dt: spec.dt,
@@ -190,7 +215,7 @@ pub(super) fn drum_options(spec: &SceneSpec, column: &Column) -> Result<DrumOpti
             "record.history_every" => "output.every",
             f => f,
         };
-        err(field, format!("{}: {}", e.value, e.rule))
+        err(field, format!("{}: {}", e.value, scene_rule(field, e.rule)))
     })?;
     spec.output.check_samples(spec.duration, spec.dt)?;
     Ok(options)
@@ -252,6 +277,40 @@ mod tests {
             (OnSliding::Stop, OnTension::Stop)
         );
         assert_eq!(c.friction, 0.4);
+    }
+
+    /// A list of the wrong length says how many values the column needs (it said "needs one
+    /// value per joint", and the user had to count the joints, the ground one included).
+    #[test]
+    fn a_friction_list_of_the_wrong_length_gives_the_count() {
+        for (list, given) in [("[0.5]", 1), ("[0.5, 0.6, 0.7]", 3), ("[]", 0)] {
+            let extra = format!(r#", "on_sliding": "slide", "friction": {list}"#);
+            let e = parse(&extra).err().expect("accepted");
+            assert!(
+                e.0.starts_with("friction: ")
+                    && e.0.contains(&format!("{given} values for 2 joints")),
+                "{list}: {}",
+                e.0
+            );
+        }
+    }
+
+    /// μ = 0 or below is refused in words a scene can act on: the options' "infinity: no
+    /// sliding" cannot be written in JSON (a large μ can), on either scheme.
+    #[test]
+    fn a_friction_of_zero_says_what_a_scene_can_write() {
+        for extra in [
+            r#", "friction": 0"#,
+            r#", "friction": -1"#,
+            r#", "on_sliding": "slide", "friction": 0"#,
+        ] {
+            let e = parse(extra).err().expect("accepted");
+            assert!(
+                e.0.starts_with("friction: ") && e.0.contains("1e9") && !e.0.contains("infinity"),
+                "{extra}: {}",
+                e.0
+            );
+        }
     }
 
     #[test]

@@ -9,7 +9,9 @@ use serde::Serialize;
 use serde_json::{json, Value};
 
 use super::Scene;
+use crate::contact::drums::Drums;
 use crate::contact::simulation::{DrumEventKind, DrumHistory, DrumOutcome, DrumStop, JointMode};
+use crate::model::column::Column;
 
 /// What a contact-scheme run of a scene reports (`summary.json`): the event-driven summary's
 /// fields where the two share a meaning, plus the slips, the top's displacement, the joints'
@@ -161,6 +163,12 @@ pub fn contact_events(o: &DrumOutcome) -> Vec<Value> {
         .collect()
 }
 
+/// The positions `x, y, θ` of each drum of `column` straight at rest, from which `history.csv`
+/// gives the displacements.
+pub fn rest(column: &Column) -> Vec<f64> {
+    Drums::new(column).rest_positions()
+}
+
 /// The stop as `summary.json` names it (the event-driven names where they mean the same), and
 /// the joint (the drum for `fallen`) it concerns.
 pub fn stop_name(s: &DrumStop) -> (&'static str, Option<usize>) {
@@ -191,9 +199,10 @@ pub struct ContactHistoryColumns {
     pub n: usize,
     /// Sample times (s).
     pub t: Vec<f64>,
-    /// Each drum's centre, horizontal displacement from the first sample (m).
+    /// Each drum's centre, horizontal displacement from its place in the straight column at
+    /// rest (m), as `peak_top_displacement`.
     pub x: Vec<f64>,
-    /// Each drum's centre, vertical displacement from the first sample (m).
+    /// Each drum's centre, vertical displacement from its place at rest (m).
     pub y: Vec<f64>,
     /// Each drum's rotation (rad, counter-clockwise positive as the driver's).
     pub block_rotation: Vec<f64>,
@@ -202,14 +211,17 @@ pub struct ContactHistoryColumns {
 }
 
 impl ContactHistoryColumns {
-    /// The columns of a run's history.
-    pub fn of(h: &DrumHistory) -> Self {
-        Self::of_rows(h, 0..h.t.len())
+    /// The columns of a run's history of `column`.
+    pub fn of(h: &DrumHistory, column: &Column) -> Self {
+        Self::of_rows(h, 0..h.t.len(), &rest(column))
     }
 
-    /// The columns of the samples `rows` of a run's history (displacements still from the
-    /// run's first sample), so that a long history can be written a block of rows at a time.
-    pub fn of_rows(h: &DrumHistory, rows: std::ops::Range<usize>) -> Self {
+    /// The columns of the samples `rows` of a run's history, displacements from `rest` (the
+    /// straight column's positions, [`rest`]), so that a long history can be written a block of
+    /// rows at a time. (They were from the run's first sample: a column released from initial
+    /// angles started at x = 0 and ended at rest at minus its tilt, and its history's top
+    /// displacement was not the summary's `peak_top_displacement`.)
+    pub fn of_rows(h: &DrumHistory, rows: std::ops::Range<usize>, rest: &[f64]) -> Self {
         let n = h.n;
         let len = rows.len();
         let mut c = ContactHistoryColumns {
@@ -223,7 +235,7 @@ impl ContactHistoryColumns {
         if len == 0 || n == 0 {
             return c;
         }
-        let q0 = &h.q[..3 * n];
+        let q0 = &rest[..3 * n];
         for q in h.q[3 * n * rows.start..].chunks_exact(3 * n).take(len) {
             for k in 0..n {
                 c.x.push(q[3 * k] - q0[3 * k]);
@@ -249,8 +261,38 @@ impl ContactHistoryColumns {
 mod tests {
     use super::*;
 
+    /// A drum released from 0.1 rad: its peak rotation is the release (it was 0.09999974, the
+    /// first step's), the history's displacements are from rest (the first sample is the tilt,
+    /// not 0; the drum back at rest is at 0, not at minus the tilt), and the history's largest top
+    /// displacement is the summary's `peak_top_displacement`.
+    #[test]
+    fn a_released_drum_is_measured_from_rest() {
+        let text = r#"{"blocks": [{"width": 1, "height": 4, "mass": 2500}],
+            "excitation": {"type": "none"}, "initial_angles": [0.1], "duration": 3,
+            "dt": 0.001, "friction": 0.7, "on_sliding": "slide", "on_tension": "fly"}"#;
+        let spec = super::super::parse(text).unwrap();
+        let scene = super::super::build(spec, std::path::Path::new("."), "test").unwrap();
+        let motion = crate::ground::FnMotion(|_| 0.0, 0.0);
+        let o = crate::contact::simulation::simulate(
+            &scene.column,
+            &motion,
+            scene.contact.as_ref().unwrap(),
+            None,
+        )
+        .unwrap();
+        assert_eq!(o.peak_rotation, [0.1]);
+        let c = ContactHistoryColumns::of(o.history.as_ref().unwrap(), &scene.column);
+        // Turned by +0.1 (counter-clockwise) about its left corner, half-width 0.5 below a
+        // centre 2 m up.
+        let tilt = -2.0 * 0.1_f64.sin() - 0.5 * (1.0 - 0.1_f64.cos());
+        assert!((c.x[0] - tilt).abs() < 1e-12, "{} against {tilt}", c.x[0]);
+        assert!(c.y[0] > 0.0, "{}", c.y[0]);
+        let top = c.x.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+        assert_eq!(top, o.peak_top_displacement);
+    }
+
     /// The columns taken a block of rows at a time are those of the whole history, bit for bit
-    /// (displacements from the run's first sample, not the block's).
+    /// (displacements from the rest positions, not from the block's first sample).
     #[test]
     fn columns_by_blocks_of_rows_are_the_whole_columns() {
         let (n, rows) = (3, 11);
@@ -261,13 +303,14 @@ mod tests {
             q: (0..rows * 3 * n).map(value).collect(),
             slip: (0..rows * n).map(|i| -value(i)).collect(),
         };
-        let whole = ContactHistoryColumns::of(&h);
+        let rest: Vec<f64> = (0..3 * n).map(|i| 0.1 * i as f64).collect();
+        let whole = ContactHistoryColumns::of_rows(&h, 0..rows, &rest);
         let mut joined = ContactHistoryColumns {
             n,
             ..ContactHistoryColumns::default()
         };
         for start in (0..rows).step_by(4) {
-            let c = ContactHistoryColumns::of_rows(&h, start..rows.min(start + 4));
+            let c = ContactHistoryColumns::of_rows(&h, start..rows.min(start + 4), &rest);
             joined.t.extend(c.t);
             joined.x.extend(c.x);
             joined.y.extend(c.y);
@@ -275,7 +318,7 @@ mod tests {
             joined.slip.extend(c.slip);
         }
         assert_eq!(joined, whole);
-        assert_eq!(whole.x[n * 5 + 1], h.q[3 * n * 5 + 3] - h.q[3]);
-        assert!(ContactHistoryColumns::of_rows(&h, 4..4).is_empty());
+        assert_eq!(whole.x[n * 5 + 1], h.q[3 * n * 5 + 3] - rest[3]);
+        assert!(ContactHistoryColumns::of_rows(&h, 4..4, &rest).is_empty());
     }
 }

@@ -81,6 +81,17 @@ pub struct DrumsBenchArgs {
     pub out: Option<PathBuf>,
 }
 
+/// `values` without repeats, in their first order.
+fn distinct<T: PartialEq>(values: Vec<T>) -> Vec<T> {
+    let mut out: Vec<T> = Vec::with_capacity(values.len());
+    for v in values {
+        if !out.contains(&v) {
+            out.push(v);
+        }
+    }
+    out
+}
+
 /// A friction coefficient: a number > 0, infinity (no sliding) included; checked with the
 /// other arguments, before any run (a NaN or 0 failed in the first run of that μ, naming the
 /// scheme's option, not `--mu`).
@@ -217,8 +228,17 @@ pub fn run(args: &DrumsBenchArgs) -> Result<(), String> {
             return Err(format!("--energy-tol: {tol}: must be a number > 0"));
         }
     }
+    // The default is where the FEMA P695 records are on the machines of docs/multidrum.md; a
+    // fresh clone has none there (they are not in the repository).
     let mut files: Vec<PathBuf> = std::fs::read_dir(&args.records)
-        .map_err(|e| format!("--records {}: {e}", args.records.display()))?
+        .map_err(|e| {
+            format!(
+                "--records {}: {e}: give the folder of the records, PEER .AT2 files (the suite of \
+                 docs/multidrum.md: the 44 FEMA P695 far-field records; any folder of .AT2 \
+                 records runs, e.g. --records examples/records)",
+                args.records.display()
+            )
+        })?
         .filter_map(|e| e.ok().map(|e| e.path()))
         .filter(|p| rocking::ground::records::is_at2(p))
         .collect();
@@ -247,7 +267,8 @@ pub fn run(args: &DrumsBenchArgs) -> Result<(), String> {
             args.records.display()
         ));
     }
-    let drums = args.drums.clone().unwrap_or(drums);
+    // Each value once: a value given twice ran every case twice and counted it twice.
+    let drums = distinct(args.drums.clone().unwrap_or(drums));
     if drums.contains(&0) {
         return Err("--drums: a column needs at least one drum".into());
     }
@@ -257,13 +278,21 @@ pub fn run(args: &DrumsBenchArgs) -> Result<(), String> {
     if let Some(n) = drums.iter().find(|&&n| n > max) {
         return Err(format!("--drums: {n}: a column has at most {max} drums"));
     }
-    let shapes = args.shapes.clone().unwrap_or(shapes);
-    let pgas = args.pga.clone().unwrap_or(pgas);
-    let mus = args.mu.clone().unwrap_or(mus);
+    let shapes = distinct(args.shapes.clone().unwrap_or(shapes));
+    let pgas = distinct(args.pga.clone().unwrap_or(pgas));
+    let mus = distinct(args.mu.clone().unwrap_or(mus));
     let records = files
         .iter()
         .map(|p| read_at2(p).map_err(|e| format!("{}: {e}", p.display())))
         .collect::<Result<Vec<Record>, String>>()?;
+    // A step longer than a record's own skips its samples (as a scene's `dt` is refused).
+    if let Some(r) = records.iter().find(|r| args.dt > r.dt * (1.0 + 1e-9)) {
+        return Err(format!(
+            "--dt: {:?}: more than the step of {} ({:?} s): at most that, or the record's samples \
+             between two steps are skipped",
+            args.dt, r.name, r.dt
+        ));
+    }
     // The scheme's step limit, before any run (it failed in the first run, as a drum option).
     let finest = if args.halve { 0.5 * args.dt } else { args.dt };
     if let Some(r) = records

@@ -11,19 +11,19 @@
 //! `DIR/summary.json` (as the event-driven summary where the two share a meaning, plus
 //! `peak_slip` and `residual_slip` per joint, the top's peak displacement, the joints' modes at the
 //! end and the scheme's energy accounts). `--plot FILE` draws the drum rotations in `FILE` and the
-//! joints' slips in `FILE_slips.EXT`.
+//! joints' slips (mm) in `FILE_slips.EXT`.
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use rocking::contact::auto;
-use rocking::contact::simulation::{self, DrumHistory, DrumOutcome, DrumStop};
+use rocking::contact::simulation::{self, DrumEventKind, DrumHistory, DrumOutcome, DrumStop};
 use rocking::ground::FnMotion;
 use rocking::scene::{contact_events, ContactHistoryColumns, ContactSummary, Scene};
 
 use crate::output::{json_tree, write_atomic, write_atomic_with};
-use crate::plot::{Chart, Marker, Series, Style, COLORS};
+use crate::plot::{member_color, member_name, Chart, Marker, Rgb, Series, Style, COLORS};
 use crate::progress;
 
 /// Runs the scene with the contact scheme and writes its outputs.
@@ -60,7 +60,8 @@ pub fn run(
 
     if scene.output.history {
         if let Some(h) = &outcome.history {
-            write_atomic_with(&out.join("history.csv"), |w| write_history_csv(w, h))?;
+            let rest = rocking::scene::rest(&scene.column);
+            write_atomic_with(&out.join("history.csv"), |w| write_history_csv(w, h, &rest))?;
         }
     }
     if scene.output.events {
@@ -90,12 +91,22 @@ pub fn run(
         outcome.event_counts[1],
         outcome.event_counts[2],
         outcome.event_counts[4],
-        outcome.peak_rotation.iter().map(|v| (v * 1e4).round() / 1e4).collect::<Vec<_>>(),
-        outcome.residual_slip.iter().map(|v| (v * 1e4).round() / 10.0).collect::<Vec<_>>(),
+        rounded(&outcome.peak_rotation, 1.0, 4),
+        rounded(&outcome.residual_slip, 1e3, 1),
         wall,
         out.display()
     );
     Ok(())
+}
+
+/// `values × scale` to `digits` decimals, for the console; a value that rounds to zero is 0,
+/// not -0 (a residual slip of -2e-6 m printed as -0.0 mm).
+fn rounded(values: &[f64], scale: f64, digits: i32) -> Vec<f64> {
+    let f = 10f64.powi(digits);
+    values
+        .iter()
+        .map(|v| (v * scale * f).round() / f + 0.0)
+        .collect()
 }
 
 /// `plot.svg` → `plot_slips.svg`.
@@ -105,9 +116,14 @@ pub fn slips_path(p: &Path) -> PathBuf {
     p.with_file_name(format!("{stem}_slips.{ext}"))
 }
 
-/// The history as CSV: per drum `x_k`, `y_k` (its centre's displacement from rest, m) and
-/// `block_rotation_k` (rad, positive counter-clockwise as the driver's), per joint `slip_k` (m).
-pub fn write_history_csv<W: Write>(w: &mut W, h: &DrumHistory) -> std::io::Result<()> {
+/// The history as CSV: per drum `x_k`, `y_k` (its centre's displacement from `rest`, the
+/// straight column at rest, m) and `block_rotation_k` (rad, positive counter-clockwise as the
+/// driver's), per joint `slip_k` (m).
+pub fn write_history_csv<W: Write>(
+    w: &mut W,
+    h: &DrumHistory,
+    rest: &[f64],
+) -> std::io::Result<()> {
     let n = h.n;
     w.write_all(b"t")?;
     for name in ["x", "y", "block_rotation", "slip"] {
@@ -119,7 +135,7 @@ pub fn write_history_csv<W: Write>(w: &mut W, h: &DrumHistory) -> std::io::Resul
     // A block of rows at a time: the columns of the whole history are not copied at once.
     const BLOCK: usize = 4096;
     for start in (0..h.t.len()).step_by(BLOCK) {
-        let c = ContactHistoryColumns::of_rows(h, start..h.t.len().min(start + BLOCK));
+        let c = ContactHistoryColumns::of_rows(h, start..h.t.len().min(start + BLOCK), rest);
         for i in 0..c.len() {
             write!(w, "{}", c.t[i])?;
             for column in [&c.x, &c.y, &c.block_rotation, &c.slip] {
@@ -144,6 +160,25 @@ fn stop_text(s: &DrumStop) -> String {
     }
 }
 
+/// The colour of an event kind's markers: each kind its own (lift-off and landing, slip start
+/// and stop were drawn alike), `None` for the kinds not marked.
+fn marker_color(kind: DrumEventKind) -> Option<Rgb> {
+    use DrumEventKind as K;
+    match kind {
+        K::Impact => Some(COLORS[1]),
+        K::LiftOff => Some(COLORS[4]),
+        K::Landing => Some(COLORS[5]),
+        K::SlipStart => Some(COLORS[2]),
+        K::SlipStop => Some(COLORS[6]),
+        K::Overturned => Some((0, 0, 0)),
+        K::SchemeSwitch => Some(COLORS[7]),
+        K::Opening => None,
+    }
+}
+
+/// The drum rotations (rad) and the joints' slips (mm), with the events marked: impacts,
+/// lift-offs, landings and scheme switches on the rotations, slip starts and stops on the slips,
+/// the overturning on both.
 fn charts(scene: &Scene, o: &DrumOutcome) -> Result<(Chart, Chart), String> {
     let h = o
         .history
@@ -160,13 +195,13 @@ fn charts(scene: &Scene, o: &DrumOutcome) -> Result<(Chart, Chart), String> {
     let mut slips = Chart {
         title,
         x_label: "t [s]".into(),
-        y_label: "joint slip [m]".into(),
+        y_label: "joint slip [mm]".into(),
         ..Chart::default()
     };
     for k in 0..n {
-        let color = COLORS[k % COLORS.len()];
+        let color = member_color(k, n);
         rotations.series.push(Series {
-            name: format!("drum {k}"),
+            name: member_name("drum", k, n),
             points: (0..h.t.len())
                 .map(|i| (h.t[i], h.q[3 * n * i + 3 * k + 2]))
                 .collect(),
@@ -174,27 +209,110 @@ fn charts(scene: &Scene, o: &DrumOutcome) -> Result<(Chart, Chart), String> {
             color,
         });
         slips.series.push(Series {
-            name: format!("joint {k}"),
+            name: member_name("joint", k, n),
             points: (0..h.t.len())
-                .map(|i| (h.t[i], h.slip[n * i + k]))
+                .map(|i| (h.t[i], 1e3 * h.slip[n * i + k]))
                 .collect(),
             style: Style::Line,
             color,
         });
     }
     for e in &o.events {
-        use rocking::contact::simulation::DrumEventKind as K;
-        let (chart, color) = match e.kind {
-            K::Impact => (&mut rotations, COLORS[1]),
-            K::LiftOff | K::Landing => (&mut rotations, COLORS[3]),
-            K::SlipStart | K::SlipStop => (&mut slips, COLORS[2]),
-            _ => continue,
+        use DrumEventKind as K;
+        let Some(color) = marker_color(e.kind) else {
+            continue;
         };
-        chart.markers.push(Marker {
+        let marker = Marker {
             x: e.t,
             kind: e.kind.name().to_string(),
             color,
-        });
+        };
+        match e.kind {
+            K::SlipStart | K::SlipStop => slips.markers.push(marker),
+            K::Overturned => {
+                slips.markers.push(marker.clone());
+                rotations.markers.push(marker);
+            }
+            _ => rotations.markers.push(marker),
+        }
     }
     Ok((rotations, slips))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::collections::BTreeMap;
+
+    /// The scene of `n` 1 × 1 m drums under a full sine of `amplitude` m/s², and its run.
+    fn run(n: usize, amplitude: f64, duration: f64) -> (Scene, DrumOutcome) {
+        let blocks = vec![r#"{"width": 1, "height": 1, "mass": 2500}"#; n].join(",");
+        let text = format!(
+            r#"{{"blocks": [{blocks}], "impacts": 2, "duration": {duration}, "dt": 0.001,
+                "excitation": {{"type": "full_sine", "amplitude": {amplitude}, "duration": 1.0}},
+                "friction": 0.5, "on_sliding": "slide", "on_tension": "fly"}}"#
+        );
+        let spec = rocking::scene::parse(&text).unwrap();
+        let scene = rocking::scene::build(spec, Path::new("."), "test").unwrap();
+        let options = scene.contact.as_ref().unwrap();
+        let e = &scene.excitation;
+        let motion = FnMotion(|t| e.acceleration(t), e.end_time());
+        let outcome = simulation::simulate(&scene.column, &motion, options, None).unwrap();
+        (scene, outcome)
+    }
+
+    #[test]
+    fn console_values_round_without_negative_zeros() {
+        let text = format!("{:?}", rounded(&[-2e-6, 0.00446, -0.0155388], 1e3, 1));
+        assert_eq!(text, "[0.0, 4.5, -15.5]");
+        assert_eq!(rounded(&[0.059965, -0.00004], 1.0, 4), [0.06, 0.0]);
+    }
+
+    /// Each kind of marker its own colour on each chart.
+    fn colors(chart: &Chart) -> BTreeMap<String, Rgb> {
+        let mut kinds = BTreeMap::new();
+        for m in &chart.markers {
+            let c = *kinds.entry(m.kind.clone()).or_insert(m.color);
+            assert_eq!(c, m.color, "{}", m.kind);
+        }
+        let mut distinct: Vec<Rgb> = kinds.values().copied().collect();
+        distinct.sort_unstable();
+        distinct.dedup();
+        assert_eq!(distinct.len(), kinds.len(), "{kinds:?}");
+        kinds
+    }
+
+    /// Every kind of event is told apart from the others (lift-offs and landings were drawn in
+    /// one colour, slip starts and stops in another), the overturning is marked on both charts
+    /// (it was on neither), the slips are in mm, and ten drums are ten colours (the palette
+    /// repeated every eight) with a legend of at most seven of them.
+    #[test]
+    fn the_charts_tell_every_event_and_drum_apart() {
+        let (scene, o) = run(10, 5.0, 3.0);
+        let (rotations, slips) = charts(&scene, &o).unwrap();
+        let (r, s) = (colors(&rotations), colors(&slips));
+        for kind in ["impact", "lift_off", "landing"] {
+            assert!(r.contains_key(kind), "{kind}: {r:?}");
+        }
+        assert!(
+            s.contains_key("slip_start") && s.contains_key("slip_stop"),
+            "{s:?}"
+        );
+        let h = o.history.as_ref().unwrap();
+        let i = h.t.len() - 1;
+        assert_eq!(slips.series[9].points[i].1, 1e3 * h.slip[10 * i + 9]);
+        let mut series: Vec<Rgb> = rotations.series.iter().map(|s| s.color).collect();
+        series.sort_unstable();
+        series.dedup();
+        assert_eq!(series.len(), 10);
+        let named = rotations.series.iter().filter(|s| !s.name.is_empty());
+        assert_eq!(named.count(), crate::plot::palette::MAX_NAMED);
+
+        let (scene, o) = run(3, 8.0, 2.0);
+        assert!(o.overturned, "{:?}", o.stop);
+        let (rotations, slips) = charts(&scene, &o).unwrap();
+        for chart in [&rotations, &slips] {
+            assert!(chart.markers.iter().any(|m| m.kind == "overturned"));
+        }
+    }
 }

@@ -18,7 +18,10 @@ use plotters::style::text_anchor::{HPos, Pos, VPos};
 use plotters::style::FontStyle;
 
 mod axis;
+mod markers;
+pub mod palette;
 use axis::Axis;
+pub use palette::{member_color, member_name};
 
 /// A colour (red, green, blue).
 pub type Rgb = (u8, u8, u8);
@@ -234,15 +237,14 @@ impl Chart {
                 marker: false,
             })
             .collect();
-        for m in &self.markers {
-            if !out.iter().any(|e| e.marker && e.name == m.kind) {
-                out.push(Entry {
-                    name: m.kind.clone(),
-                    style: Style::Dashed,
-                    color: m.color,
-                    marker: true,
-                });
-            }
+        let ticks = markers::as_ticks(&self.markers);
+        for k in markers::kinds(&self.markers) {
+            out.push(Entry {
+                name: markers::legend_name(&k, ticks),
+                style: Style::Dashed,
+                color: k.color,
+                marker: true,
+            });
         }
         out
     }
@@ -307,8 +309,12 @@ impl Chart {
     fn layout(&self, entries: &[Entry]) -> ((f64, f64), Vec<String>) {
         let width = (PLOT_WIDTH + Self::legend_width(entries)).ceil();
         let title = wrap(&self.title, TITLE_FONT, width - 2.0 * PAD);
-        let height = (HEIGHT + (title.len().max(1) - 1) as f64 * 1.3 * TITLE_FONT).ceil();
-        ((width, height), title)
+        // Below the title: HEIGHT less one title line, or taller when the legend needs it
+        // (entries below the image's edge were cut: a column of thirty blocks showed 22).
+        let legend = PAD + 10.0 + entries.len() as f64 * 1.6 * LEGEND_FONT + PAD;
+        let rest = (HEIGHT - PAD - 1.3 * TITLE_FONT).max(legend);
+        let height = PAD + title.len().max(1) as f64 * 1.3 * TITLE_FONT + rest;
+        ((width, height.ceil()), title)
     }
 
     /// The chart as an SVG document.
@@ -381,8 +387,15 @@ impl Chart {
             .filter_map(|t| t.1.as_deref())
             .map(|l| text_width(l, TICK_FONT))
             .fold(0.0, f64::max);
+        let ticks = markers::as_ticks(&self.markers);
+        let kinds = markers::kinds(&self.markers);
+        let strip = if ticks {
+            kinds.len() as f64 * markers::TICK_ROW
+        } else {
+            0.0
+        };
         let mut chart = ChartBuilder::on(&plot)
-            .margin_top(px(PAD, s))
+            .margin_top(px(PAD + strip, s))
             .margin_left(px(PAD, s))
             .margin_right(px(PAD, s))
             .margin_bottom(px(PAD / 2.0, s))
@@ -434,7 +447,18 @@ impl Chart {
             }
             out
         };
-        for m in self.markers.iter().filter(|m| xa.drawable(m.x)) {
+        if ticks {
+            let area = chart.plotting_area();
+            let top = area.map_coordinate(&(xr.0, yr.1)).1;
+            let x_px = |x: f64| {
+                let x = xa.drawable(x).then(|| xa.to(x))?;
+                (xr.0..=xr.1)
+                    .contains(&x)
+                    .then(|| area.map_coordinate(&(x, yr.1)).0)
+            };
+            markers::draw_ticks(root, &self.markers, &kinds, top, x_px, s)?;
+        }
+        for m in self.markers.iter().filter(|m| !ticks && xa.drawable(m.x)) {
             let x = xa.to(m.x);
             if x < xr.0 || x > xr.1 {
                 continue;
@@ -533,68 +557,4 @@ impl Chart {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn lines_are_cut_at_the_edge() {
-        let pieces = clip(
-            &[(-1.0, 0.5), (0.5, 0.5), (2.0, 0.5)],
-            (0.0, 1.0),
-            (0.0, 1.0),
-        );
-        assert_eq!(pieces, vec![vec![(0.0, 0.5), (0.5, 0.5), (1.0, 0.5)]]);
-        let pieces = clip(
-            &[(0.5, 0.5), (0.5, 2.0), (0.6, 2.0), (0.6, 0.5)],
-            (0.0, 1.0),
-            (0.0, 1.0),
-        );
-        assert_eq!(
-            pieces,
-            vec![vec![(0.5, 0.5), (0.5, 1.0)], vec![(0.6, 1.0), (0.6, 0.5)]]
-        );
-    }
-
-    #[test]
-    fn long_titles_wrap() {
-        let t = "Thesis 4.2: two granite blocks, upper one released at 0.153 rad — no ground motion, and more words";
-        let lines = wrap(t, TITLE_FONT, 400.0);
-        assert!(lines.len() >= 2);
-        assert!(lines.iter().all(|l| text_width(l, TITLE_FONT) <= 400.0));
-        assert_eq!(lines.join(" "), t);
-    }
-
-    /// Both formats draw: the SVG has the title and every legend entry in full, the PNG is a
-    /// PNG of twice the SVG's size, and the image is widened for a long legend entry instead of
-    /// cutting it.
-    #[test]
-    fn svg_and_png_have_the_whole_legend() {
-        let long = "Eq. 30, t1' = 0.323 s, beta = 1.48 (a long legend entry)";
-        let chart = |name: &str| Chart {
-            title: "OAS, test".into(),
-            x_label: "p [1/s]".into(),
-            y_label: "a_p / a_p,min".into(),
-            series: vec![Series {
-                name: name.into(),
-                points: vec![(0.5, 1.0), (2.0, 3.0), (4.0, 9.7)],
-                style: Style::Dashed,
-                color: COLORS[2],
-            }],
-            ..Chart::default()
-        };
-        let svg = chart(long).to_svg().unwrap();
-        assert!(svg.starts_with("<svg"));
-        assert!(svg.contains("OAS, test"));
-        assert!(svg.contains("beta = 1.48 (a long legend entry)"));
-        let width = |svg: &str| -> u32 {
-            let w = svg.split("width=\"").nth(1).unwrap();
-            w[..w.find('"').unwrap()].parse().unwrap()
-        };
-        let short = chart("x").to_svg().unwrap();
-        assert!(width(&svg) as f64 >= width(&short) as f64 + text_width(long, LEGEND_FONT) - 20.0);
-        let png = chart(long).to_png().unwrap();
-        assert_eq!(&png[..8], b"\x89PNG\r\n\x1a\n");
-        let png_width = u32::from_be_bytes(png[16..20].try_into().unwrap());
-        assert_eq!(png_width, 2 * width(&svg));
-    }
-}
+mod tests;
