@@ -251,11 +251,15 @@ mod tests {
 
     /// A column of twelve drums on the event-driven driver: twelve colours (the palette
     /// repeated every eight) and seven named in the legend; the event kinds keep their colours.
+    /// Every joint starts open (1 mrad), so that no two drums turn alike (drums
+    /// rocking as one are one line).
     #[test]
     fn a_tall_column_chart_tells_its_blocks_apart() {
         let blocks = [r#"{"width": 1, "height": 1, "mass": 2500}"#; 12].join(",");
+        let angles = ["0.001"; 12].join(",");
         let text = format!(
             r#"{{"blocks": [{blocks}], "duration": 1.0, "dt": 0.001,
+                "initial_angles": [{angles}],
                 "excitation": {{"type": "half_sine", "amplitude": 6.0, "duration": 0.5}}}}"#
         );
         let spec = rocking::scene::parse(&text).unwrap();
