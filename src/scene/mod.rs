@@ -447,6 +447,7 @@ pub fn build(spec: SceneSpec, base: &Path, name: &str) -> Result<Scene, SceneErr
         ));
     }
     excitation::check_step_resolves(&excitation, spec.dt)?;
+    check_step_fits_the_column(&column, spec.dt, options.physics.gravity)?;
     spec.output.check_samples(spec.duration, spec.dt)?;
     Ok(Scene {
         title: title(spec.title, name),
@@ -457,6 +458,26 @@ pub fn build(spec: SceneSpec, base: &Path, name: &str) -> Result<Scene, SceneErr
         auto,
         output: spec.output,
     })
+}
+
+/// Refuses a step longer than a tenth of the column's own time `√(H/g)`, `H` its height, as loop
+/// scenes refuse a step beyond a tenth of their chain's `√(L/g)`: a 10 nm block at `dt` = 1 ms
+/// (some 30 of its own times a step) ended by "tension" with a peak rotation of 88 rad. Real
+/// columns (H of decimetres and more: 0.01 s and longer) pass any usual step.
+fn check_step_fits_the_column(column: &Column, dt: f64, gravity: f64) -> Result<(), SceneError> {
+    let height: f64 = column.blocks().iter().map(|b| b.height).sum();
+    let own_time = (height / gravity).sqrt();
+    if gravity > 0.0 && dt > 0.1 * own_time {
+        return Err(err(
+            "dt",
+            format!(
+                "{dt}: more than a tenth of the column's own time √(H/g) = {own_time:.3e} s \
+                 (H = {height:.3e} m, its height): at most {:.3e}",
+                0.1 * own_time
+            ),
+        ));
+    }
+    Ok(())
 }
 
 #[cfg(test)]

@@ -75,6 +75,13 @@ fn errors_name_the_field() {
             "blocks[0].mass",
         ),
         (
+            GOOD.replace(
+                "\"width\": 0.2, \"height\": 1.0",
+                "\"width\": 1e-8, \"height\": 1e-8",
+            ),
+            "dt: 0.001: more than a tenth of the column's own time √(H/g) = 3.193e-5 s",
+        ),
+        (
             GOOD.replace("\"width\": 0.2", "\"width\": 1e200"),
             "blocks[0]: the inertia m (w² + h²) / 12 from mass = 10.0, width = 1e200",
         ),
