@@ -395,6 +395,59 @@ fn a_loop_without_its_closure_is_not_positive_definite() {
     }
 }
 
+/// A negative diagonal entry of a loop's mass matrix is refused by both models, naming it: the
+/// cut joint's zero rows are allowed (`M` is only semi-definite), a negative entry is not. The
+/// fuzzer of the C ABI found an impact whose closing DOF had `M_77 = −9.3`: its kinetic energy
+/// before was negative and the one after larger.
+#[test]
+fn a_negative_diagonal_mass_entry_is_refused() {
+    let chain = VoussoirArch::semicircular(5.0, 0.8, 5).chain().unwrap();
+    let nj = chain.n_joints();
+    let m = 2 * nj;
+    let pose = chain.pose(&vec![0.0; m]);
+    let g = chain.closure_matrix(&pose);
+    let load = chain.load_vector(&pose, 0.0, GRAVITY);
+    let mut mass = chain.mass_matrix(&pose);
+    let cut = m - 1; // the cut joint's phî: a zero row and column
+    assert_eq!(mass[cut * m + cut], 0.0);
+    mass[cut * m + cut] = -9.3;
+    let mut st = vec![Status::Closed; nj];
+    st[nj - 1] = Status::OpenLeft;
+    let mut v = vec![0.0; m];
+    v[cut] = -2.6;
+    let mut closing = vec![false; nj];
+    closing[nj - 1] = true;
+    let (st0, v0) = (st.clone(), v.clone());
+    let e = impact_model_constrained(
+        &mass,
+        &g,
+        &mut st,
+        &mut v,
+        &closing,
+        &ModelOptions::default(),
+    )
+    .unwrap_err();
+    assert_eq!(e.kind, ErrorKind::NotPositiveDefinite);
+    assert!(
+        e.detail.starts_with(&format!("mass[{cut}][{cut}] = -9.3")),
+        "{}",
+        e.detail
+    );
+    assert_eq!((st, v), (st0, v0));
+    let (mut st, mut a) = (vec![Status::Closed; nj], vec![0.0; m]);
+    let e = opening_model_constrained(
+        &mass,
+        &load,
+        &g,
+        None,
+        &mut st,
+        &mut a,
+        &ModelOptions::default(),
+    )
+    .unwrap_err();
+    assert_eq!(e.kind, ErrorKind::NotPositiveDefinite);
+}
+
 /// Three open joints of a loop leave no degree of freedom: without loads the loop is at rest,
 /// not in error (under gravity these three hinges — extrados at the springings, intrados at the
 /// crown — are no thrust line, and more joints open).

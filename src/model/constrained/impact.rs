@@ -16,7 +16,7 @@ use crate::error::{ErrorKind, RockingError};
 use crate::model::cone::{ConeProblem, ConeSolution, Generator, ModelOptions, ModelReport};
 use crate::model::configuration::{self, Status};
 use crate::model::constrained::problem::{ConstrainedProblem, ConstrainedWork};
-use crate::model::constrained::{check_constraints, solve_in};
+use crate::model::constrained::{check_constraints, check_diagonal, solve_in};
 use crate::model::impact::{
     check_mass, check_mass_size, check_positive_definite, kinetic_energy, row_times_moving,
 };
@@ -121,6 +121,7 @@ fn impact_model_constrained_checked(
     configuration::check_dof_vector("velocity", velocity, m)?;
     configuration::check_finite("velocity", velocity)?;
     let nc = check_constraints(constraints, m)?;
+    check_diagonal(mass, m)?;
     if closing.len() != n {
         return Err(RockingError::new(
             ErrorKind::InvalidSize,

@@ -45,6 +45,24 @@ fn check_constraints(constraints: &[f64], m: usize) -> Result<usize, RockingErro
     Ok(constraints.len() / m)
 }
 
+/// A loop's mass matrix is only positive semi-definite (its cut joint moves no mass), but none of
+/// its diagonal entries can be negative: `e_iᵀ M e_i` is twice the kinetic energy of DOF `i`
+/// moving alone. A negative one (an input error) made the kinetic energy before an impact
+/// negative and the one after larger (found by the fuzzer of the C ABI).
+fn check_diagonal(mass: &[f64], m: usize) -> Result<(), RockingError> {
+    match (0..m).find(|&i| mass[i * m + i] < 0.0) {
+        None => Ok(()),
+        Some(i) => Err(RockingError::new(
+            ErrorKind::NotPositiveDefinite,
+            format!(
+                "mass[{i}][{i}] = {}: a diagonal entry of a mass matrix cannot be negative (twice \
+                 the kinetic energy of DOF {i} moving alone)",
+                mass[i * m + i]
+            ),
+        )),
+    }
+}
+
 /// Dispatches a constrained problem to a solver, with the rule of [`crate::model::solver`]: with
 /// [`Solver::Auto`] enumerate for few closed joints, project above. The enumeration limit counts
 /// the closed joints and every closing joint but the first (`3^closed × 2^closing`

@@ -13,7 +13,7 @@ use crate::error::{ErrorKind, RockingError};
 use crate::model::cone::{ConeProblem, ModelOptions, ModelReport};
 use crate::model::configuration::{self, Status};
 use crate::model::constrained::problem::{ConstrainedProblem, ConstrainedWork};
-use crate::model::constrained::{check_constraints, solve_in};
+use crate::model::constrained::{check_constraints, check_diagonal, solve_in};
 use crate::model::impact::{check_mass, check_positive_definite};
 use crate::model::opening::generators;
 
@@ -71,6 +71,7 @@ pub(crate) fn opening_model_constrained_in(
     configuration::check_finite("load", load)?;
     configuration::check_dof_vector("acceleration", acceleration, m)?;
     let nc = check_constraints(constraints, m)?;
+    check_diagonal(mass, m)?;
     let zeros;
     let rhs = match constraint_rhs {
         Some(r) if r.len() != nc => {
