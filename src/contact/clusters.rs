@@ -210,16 +210,7 @@ impl Stepper {
         let mut any = false;
         for k in 0..n {
             for c in 0..2 {
-                let e = &self.geometry[k].ends[c];
-                let un = || {
-                    if self.rates_fresh {
-                        self.start_rates[k][c][1]
-                    } else {
-                        self.drums.rates(&e.rows, &self.v, k).0
-                    }
-                };
-                self.flags[k][c] = !excluded.is_some_and(|e| e[k][c])
-                    && (e.gap <= self.touch_gap || e.gap + h * un() <= 0.0);
+                self.flags[k][c] = self.in_index_set(k, c, h, excluded);
             }
             let act = self.flags[k];
             let w = ContactProblem::tangent_weights(act);

@@ -435,6 +435,28 @@ impl Stepper {
         }
     }
 
+    /// Whether end `c` of joint `k` enters the index set of a sub-step of length `h`: touching
+    /// its face (gap within the touch gap) or predicted, linearly from its normal rate at the
+    /// start of the sub-step, to close within it; never an `excluded` end. The full and the
+    /// condensed sub-steps (`clusters.rs`) take the same set.
+    pub(super) fn in_index_set(
+        &self,
+        k: usize,
+        c: usize,
+        h: f64,
+        excluded: Option<&[[bool; 2]]>,
+    ) -> bool {
+        let e = &self.geometry[k].ends[c];
+        let un = || {
+            if self.rates_fresh {
+                self.start_rates[k][c][1]
+            } else {
+                self.drums.rates(&e.rows, &self.v, k).0
+            }
+        };
+        !excluded.is_some_and(|e| e[k][c]) && (e.gap <= self.touch_gap || e.gap + h * un() <= 0.0)
+    }
+
     /// One Moreau–Jean sub-step of length `h`; `excluded` ends are kept out of the index set (the
     /// landing ends before their located impact).
     pub(super) fn substep(
@@ -474,20 +496,9 @@ impl Stepper {
         self.drums
             .joints_rows_into(&self.q_next, &mut self.predicted);
         // The index set: ends touching their face and ends predicted (linearly) to close.
-        let eps = self.touch_gap;
         for k in 0..n {
             for c in 0..2 {
-                let e = &self.geometry[k].ends[c];
-                let un = || {
-                    if self.rates_fresh {
-                        self.start_rates[k][c][1]
-                    } else {
-                        self.drums.rates(&e.rows, &self.v, k).0
-                    }
-                };
-                let closing = || e.gap + h * un() <= 0.0;
-                self.flags[k][c] =
-                    !excluded.is_some_and(|e| e[k][c]) && (e.gap <= eps || closing());
+                self.flags[k][c] = self.in_index_set(k, c, h, excluded);
             }
         }
         self.rates_fresh = false;
