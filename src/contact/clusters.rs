@@ -20,7 +20,7 @@
 //! margin): then it is the full step's answer up to rounding. If one is not, or the column comes
 //! to rest, the sub-step is redone by the full path.
 //!
-//! The hook is [`Stepper::substep`]: the step's sub-steps and those of the located impacts are
+//! The hook is `Stepper::substep`: the step's sub-steps and those of the located impacts are
 //! condensed; the landings' prediction, location and missed-landing check, the impact problems
 //! and the projection of the positions after the sub-step ([`super::projection`]) are the full
 //! ones. A condensed joint's contact work is not booked: it is zero by construction
