@@ -4,7 +4,6 @@
 //! the summary (`summary.json`'s fields).
 
 use std::path::PathBuf;
-use std::time::Instant;
 
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1};
@@ -12,7 +11,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use rocking::contact::{auto, simulation};
 use rocking::driver::closed::LoopState;
-use rocking::driver::simulate_loop;
+use rocking::driver::simulate_loop_with_progress;
 use rocking::driver::{self, History};
 use rocking::ground::excitation::Excitation;
 use rocking::ground::FnMotion;
@@ -223,16 +222,16 @@ fn loop_run<'py>(
     scene: &LoopScene,
     scene_name: Option<String>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let (outcome, wall) = py.detach(|| {
-        let started = Instant::now();
-        let outcome = simulate_loop(
+    // Interruptible as the column runs are (Ctrl-C within 1 % of the duration).
+    let (outcome, wall) = interruptible(py, |progress| {
+        simulate_loop_with_progress(
             &scene.chain,
             &scene.excitation,
             LoopState::at_rest(&scene.chain),
             &scene.options,
-        );
-        (outcome, started.elapsed().as_secs_f64())
-    });
+            Some(progress),
+        )
+    })?;
     let outcome = outcome.map_err(|e| value_error(e.to_string()))?;
     let n = scene.chain.n_joints();
     let (t, angles) = if scene.output.history {

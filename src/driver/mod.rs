@@ -79,7 +79,7 @@ pub use barrier::{
     certify_column_barrier, column_is_certified, column_stop_is_certified, BarrierCertificate,
     BarrierFailure, CERTIFIED_COLUMNS, CERTIFIED_EPSILON,
 };
-pub use closed::{simulate_loop, LoopOptions, LoopOutcome, LoopState};
+pub use closed::{simulate_loop, simulate_loop_with_progress, LoopOptions, LoopOutcome, LoopState};
 pub(crate) use options::RunOptions;
 pub use options::{
     EventLocator, InitialState, Integrator, PhysicsOptions, Recording, Scheme, SimulationOptions,

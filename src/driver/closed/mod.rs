@@ -120,6 +120,19 @@ pub fn simulate_loop(
     start: LoopState,
     options: &LoopOptions,
 ) -> Result<LoopOutcome, LoopError> {
+    simulate_loop_with_progress(chain, motion, start, options, None)
+}
+
+/// [`simulate_loop`] reporting its progress (the fraction of the duration run, 0–1) to
+/// `progress` every 1 % of the duration, as the column drivers do: a progress bar, or a caller
+/// that stops the run by unwinding from it (Ctrl-C in the Python package). The same answers.
+pub fn simulate_loop_with_progress(
+    chain: &Chain,
+    motion: &dyn GroundMotion,
+    start: LoopState,
+    options: &LoopOptions,
+    progress: Option<&mut dyn FnMut(f64)>,
+) -> Result<LoopOutcome, LoopError> {
     let bad = |name: &str, v: f64| LoopError::Options(format!("{name} = {v}"));
     if !(options.dt > 0.0 && options.dt.is_finite()) {
         return Err(bad("dt", options.dt));
@@ -163,7 +176,7 @@ pub fn simulate_loop(
             start.statuses.len()
         )));
     }
-    Runner::new(chain, motion, options).run(start)
+    Runner::new(chain, motion, options).run(start, progress)
 }
 
 struct Runner<'a> {
@@ -332,7 +345,12 @@ impl<'a> Runner<'a> {
         r[1].hypot(r[2]).max(r[0].abs() * self.reach)
     }
 
-    fn run(mut self, start: LoopState) -> Result<LoopOutcome, LoopError> {
+    /// The run from `start`, reporting to `progress` ([`simulate_loop_with_progress`]).
+    fn run(
+        mut self,
+        start: LoopState,
+        mut progress: Option<&mut dyn FnMut(f64)>,
+    ) -> Result<LoopOutcome, LoopError> {
         let opts = self.options;
         let n = self.chain.n_joints();
         let mut s = start;
@@ -353,7 +371,14 @@ impl<'a> Runner<'a> {
         if opts.record_every > 0 {
             self.out.history.push((s.time, s.phi.clone()));
         }
+        let mut next_report = 0.0;
         while s.time < t_end - 1e-12 * opts.dt {
+            if let Some(report) = progress.as_mut() {
+                if s.time >= next_report {
+                    report(s.time / t_end);
+                    next_report = s.time + 0.01 * t_end;
+                }
+            }
             let dt = opts.dt.min(t_end - s.time);
             let at_rest = s.rates.iter().all(|&r| r == 0.0);
             let ag_now = self.ag(s.time);
