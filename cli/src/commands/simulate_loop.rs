@@ -1,5 +1,5 @@
 //! `rocking simulate` on a closed chain (`"arch"` or `"colonnade"` scene; docs/arches.md): the
-//! loop driver (`rocking::driver::simulate_loop`).
+//! loop driver (`rocking::driver::simulate_loop_with_progress`, with the progress bar).
 //!
 //! Writes `DIR/history.csv` (t; per joint its signed angle `angle_k = phĭ_k + phî_k`),
 //! `DIR/events.jsonl` (`t`, `kind`: opening, closing, locked, settled, collapsed; `joints` that
@@ -16,7 +16,7 @@ use std::time::Instant;
 
 use rocking::chain::colonnade::CappedColonnade;
 use rocking::driver::closed::{LoopEventKind, LoopOutcome, LoopState};
-use rocking::driver::simulate_loop;
+use rocking::driver::simulate_loop_with_progress;
 use rocking::model::column::Block;
 use rocking::scene::{
     hinges, loop_event_name, loop_events, loop_joint_angles, LoopScene, LoopShape, LoopSummary,
@@ -24,6 +24,7 @@ use rocking::scene::{
 
 use crate::output::{json_tree, write_atomic, write_atomic_with};
 use crate::plot::{Chart, Marker, Series, Style, COLORS};
+use crate::progress;
 
 /// Runs the loop scene and writes its outputs.
 pub fn run(
@@ -32,15 +33,20 @@ pub fn run(
     out: &Path,
     plot: Option<&Path>,
 ) -> Result<(), String> {
+    // The progress bar of the column runs (an arch at a fine step runs for seconds to minutes).
+    let bar = progress::bar(1000, "simulating");
+    let mut report = |fraction: f64| bar.set_position((fraction * 1000.0) as u64);
     let started = Instant::now();
-    let outcome = simulate_loop(
+    let outcome = simulate_loop_with_progress(
         &scene.chain,
         &scene.excitation,
         LoopState::at_rest(&scene.chain),
         &scene.options,
+        Some(&mut report),
     )
     .map_err(|e| e.to_string())?;
     let wall = started.elapsed().as_secs_f64();
+    bar.finish_and_clear();
     let n = scene.chain.n_joints();
     if scene.output.history {
         write_atomic_with(&out.join("history.csv"), |w| {
@@ -285,6 +291,7 @@ fn history_chart(scene: &LoopScene, o: &LoopOutcome) -> Result<Chart, String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use rocking::driver::simulate_loop;
 
     /// The loop scene of the JSON `text` (written to a file of its own, as a user's) and its run.
     fn run_scene(name: &str, text: &str) -> (LoopScene, LoopOutcome) {
