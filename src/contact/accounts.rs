@@ -60,42 +60,62 @@ impl Stepper {
         let n = self.drums.len();
         for k in 0..n {
             let p = self.problem.impulses(k);
-            self.joint_impulses[k] = [p[0] + p[1], p[2]];
-            if p == [0.0; 3] {
-                continue;
-            }
-            let ua = self.problem.rates(k);
-            let sh = self.shifts[k];
-            let ua = [ua[0] - sh[0], ua[1] - sh[1], ua[2] - sh[2]];
-            let ub = match v_before {
-                Some(v) => self.problem.rows_rates(k, v),
-                None => self.rates_before[k],
+            let (ub, ua) = if p == [0.0; 3] {
+                ([0.0; 3], [0.0; 3])
+            } else {
+                let ua = self.problem.rates(k);
+                let sh = self.shifts[k];
+                let ua = [ua[0] - sh[0], ua[1] - sh[1], ua[2] - sh[2]];
+                let ub = match v_before {
+                    Some(v) => self.problem.rows_rates(k, v),
+                    None => self.rates_before[k],
+                };
+                (ub, ua)
             };
-            let mut approaching = false;
-            for c in 0..2 {
-                if p[c] != 0.0 {
-                    let w = -p[c] * 0.5 * (ub[c] + ua[c]);
-                    if impact || ub[c] < 0.0 {
-                        approaching = true;
-                        self.energy.impact += w;
-                    } else {
-                        self.energy.persistent_contact += w;
-                    }
-                }
-            }
-            if p[2] != 0.0 {
-                let w = -p[2] * 0.5 * (ub[2] + ua[2]);
-                if self.statuses[k].slip != Slip::Stick
-                    || (self.options.energy_consistent && !impact && self.slipping_before[k])
-                {
-                    // Slipping, or (energy_consistent) a slip that stopped within the step: the
-                    // Coulomb impulse's work along the step's mean slip rate is friction.
-                    self.energy.friction += w;
-                } else if approaching {
+            self.book_joint(k, p, ub, ua, impact);
+        }
+    }
+
+    /// The contact work of joint `k`: its impulses `p` (two normal, one tangential), its rates
+    /// `ub` before and `ua` after (the persistent contacts' shifts removed), booked as
+    /// [`Stepper::account_contact_work`] says; `joint_impulses` keeps `p`. The full and the
+    /// condensed sub-steps (`clusters.rs`) book through it.
+    pub(super) fn book_joint(
+        &mut self,
+        k: usize,
+        p: [f64; 3],
+        ub: [f64; 3],
+        ua: [f64; 3],
+        impact: bool,
+    ) {
+        self.joint_impulses[k] = [p[0] + p[1], p[2]];
+        if p == [0.0; 3] {
+            return;
+        }
+        let mut approaching = false;
+        for c in 0..2 {
+            if p[c] != 0.0 {
+                let w = -p[c] * 0.5 * (ub[c] + ua[c]);
+                if impact || ub[c] < 0.0 {
+                    approaching = true;
                     self.energy.impact += w;
                 } else {
                     self.energy.persistent_contact += w;
                 }
+            }
+        }
+        if p[2] != 0.0 {
+            let w = -p[2] * 0.5 * (ub[2] + ua[2]);
+            if self.statuses[k].slip != Slip::Stick
+                || (self.options.energy_consistent && !impact && self.slipping_before[k])
+            {
+                // Slipping, or (energy_consistent) a slip that stopped within the step: the
+                // Coulomb impulse's work along the step's mean slip rate is friction.
+                self.energy.friction += w;
+            } else if approaching {
+                self.energy.impact += w;
+            } else {
+                self.energy.persistent_contact += w;
             }
         }
     }

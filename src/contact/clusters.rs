@@ -518,7 +518,10 @@ impl Stepper {
                 let u = cw.problem.rates(c);
                 let sh = self.shifts[k];
                 let p = cw.problem.impulses(c);
-                self.book(k, p, [u[0] - sh[0], u[1] - sh[1], u[2] - sh[2]]);
+                // The full sub-step's accounts (a condensed step never runs with
+                // `energy_consistent`, so its term is off).
+                let ub = self.rates_before[k];
+                self.book_joint(k, p, ub, [u[0] - sh[0], u[1] - sh[1], u[2] - sh[2]], false);
                 p
             };
             let st = self.statuses[k];
@@ -526,38 +529,6 @@ impl Stepper {
                 self.flags[k][0] && st.closed[0] && p[0] > 0.0,
                 self.flags[k][1] && st.closed[1] && p[1] > 0.0,
             ];
-        }
-    }
-
-    /// The contact work of joint `k` in a condensed step (the full sub-step's accounts, without
-    /// `energy_consistent`).
-    fn book(&mut self, k: usize, p: [f64; 3], ua: [f64; 3]) {
-        self.joint_impulses[k] = [p[0] + p[1], p[2]];
-        if p == [0.0; 3] {
-            return;
-        }
-        let ub = self.rates_before[k];
-        let mut approaching = false;
-        for c in 0..2 {
-            if p[c] != 0.0 {
-                let w = -p[c] * 0.5 * (ub[c] + ua[c]);
-                if ub[c] < 0.0 {
-                    approaching = true;
-                    self.energy.impact += w;
-                } else {
-                    self.energy.persistent_contact += w;
-                }
-            }
-        }
-        if p[2] != 0.0 {
-            let w = -p[2] * 0.5 * (ub[2] + ua[2]);
-            if self.statuses[k].slip != Slip::Stick {
-                self.energy.friction += w;
-            } else if approaching {
-                self.energy.impact += w;
-            } else {
-                self.energy.persistent_contact += w;
-            }
         }
     }
 }
