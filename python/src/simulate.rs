@@ -9,7 +9,6 @@ use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use rocking::contact::{auto, simulation};
 use rocking::driver::closed::LoopState;
 use rocking::driver::simulate_loop_with_progress;
 use rocking::driver::{self, History};
@@ -132,21 +131,9 @@ fn contact_run<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let options = scene.contact.as_ref().expect("a contact-scheme scene");
     let (outcome, wall) = interruptible(py, |progress| {
-        let excitation = &scene.excitation;
-        let motion = FnMotion(|t| excitation.acceleration(t), excitation.end_time());
-        match &scene.auto {
-            Some(rules) => auto::simulate(
-                &scene.column,
-                &motion,
-                &scene.options,
-                options,
-                rules,
-                Some(progress),
-            )
-            .map_err(|e| e.to_string()),
-            None => simulation::simulate(&scene.column, &motion, options, Some(progress))
-                .map_err(|e| e.to_string()),
-        }
+        scene
+            .simulate_contact(Some(progress))
+            .expect("a contact-scheme scene")
     })?;
     let outcome = outcome.map_err(value_error)?;
     let d = PyDict::new(py);

@@ -20,7 +20,8 @@ use serde::Deserialize;
 
 use super::{err, SceneError, SceneSpec};
 use crate::contact::moreau::SchemeOptions;
-use crate::contact::simulation::{DrumOptions, DrumRecording, OnSliding, OnTension};
+use crate::contact::simulation::{DrumOptions, DrumOutcome, DrumRecording, OnSliding, OnTension};
+use crate::ground::FnMotion;
 use crate::model::column::{Column, GRAVITY};
 
 /// Friction coefficient μ: one for every joint, or one per joint (bottom to top).
@@ -219,6 +220,33 @@ pub(super) fn drum_options(spec: &SceneSpec, column: &Column) -> Result<DrumOpti
     })?;
     spec.output.check_samples(spec.duration, spec.dt)?;
     Ok(options)
+}
+
+impl super::Scene {
+    /// Runs a scene of the contact scheme (`contact` set): Moreau–Jean, or the automatic scheme
+    /// where `auto` is set, reporting to `progress` as the drivers do; `None` for a scene of the
+    /// event-driven driver. The one choice of scheme for the CLI and the Python package.
+    pub fn simulate_contact(
+        &self,
+        progress: Option<&mut dyn FnMut(f64)>,
+    ) -> Option<Result<DrumOutcome, String>> {
+        let options = self.contact.as_ref()?;
+        let excitation = &self.excitation;
+        let motion = FnMotion(|t| excitation.acceleration(t), excitation.end_time());
+        Some(match &self.auto {
+            Some(rules) => crate::contact::auto::simulate(
+                &self.column,
+                &motion,
+                &self.options,
+                options,
+                rules,
+                progress,
+            )
+            .map_err(|e| e.to_string()),
+            None => crate::contact::simulation::simulate(&self.column, &motion, options, progress)
+                .map_err(|e| e.to_string()),
+        })
+    }
 }
 
 #[cfg(test)]

@@ -17,9 +17,7 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use rocking::contact::auto;
-use rocking::contact::simulation::{self, DrumEventKind, DrumHistory, DrumOutcome, DrumStop};
-use rocking::ground::FnMotion;
+use rocking::contact::simulation::{DrumEventKind, DrumHistory, DrumOutcome, DrumStop};
 use rocking::scene::{contact_events, ContactHistoryColumns, ContactSummary, Scene};
 
 use crate::output::{json_tree, write_atomic, write_atomic_with};
@@ -37,24 +35,12 @@ pub fn run(
         .contact
         .as_ref()
         .ok_or("the scene did not choose the contact scheme")?;
-    let excitation = &scene.excitation;
-    let motion = FnMotion(|t| excitation.acceleration(t), excitation.end_time());
     let bar = progress::bar(1000, "simulating");
     let mut report = |fraction: f64| bar.set_position((fraction * 1000.0) as u64);
     let started = Instant::now();
-    let outcome = match &scene.auto {
-        Some(rules) => auto::simulate(
-            &scene.column,
-            &motion,
-            &scene.options,
-            options,
-            rules,
-            Some(&mut report),
-        )
-        .map_err(|e| e.to_string())?,
-        None => simulation::simulate(&scene.column, &motion, options, Some(&mut report))
-            .map_err(|e| e.to_string())?,
-    };
+    let outcome = scene
+        .simulate_contact(Some(&mut report))
+        .expect("a contact-scheme scene")?;
     let wall = started.elapsed().as_secs_f64();
     bar.finish_and_clear();
 
@@ -242,6 +228,8 @@ fn charts(scene: &Scene, o: &DrumOutcome) -> Result<(Chart, Chart), String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use rocking::contact::simulation;
+    use rocking::ground::FnMotion;
     use std::collections::BTreeMap;
 
     /// The scene of `n` 1 × 1 m drums under a full sine of `amplitude` m/s², and its run.
